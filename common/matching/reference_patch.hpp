@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "common/sampling/sample_set.hpp"
+
+namespace kapfix {
+
+// A stored reference: the sampled pixels' values of one plane (CV_8UC1 or CV_16UC1, see
+// ExtractChannel) and where they sit. Distance() is the SSD between those values and the
+// pixels under them in a current plane moved by a shift (SPEC §1 "displacement": the patch is
+// found at reference position + shift).
+//
+// Edge handling (SPEC §2.1): a shift that would move any sampled pixel out of the current
+// frame is not scored at all; ShiftRange()/CanShift() clamp the search range so that every
+// scored shift compares the same number of pixels, and distances stay comparable.
+class ReferencePatch {
+ public:
+  ReferencePatch() = default;
+  ReferencePatch(const cv::Mat& reference, SampleSet samples);
+
+  // SSD at `shift`. Requires CanShift(current.size(), shift) and current.type() == type().
+  std::int64_t Distance(const cv::Mat& current, cv::Point shift) const;
+
+  bool CanShift(cv::Size frame, cv::Point shift) const;
+  // Inclusive range [first, last] of shifts along x (or y) that keep every sampled pixel
+  // inside `frame`, intersected with [−range, +range]; empty (first > last) if none.
+  struct ShiftInterval {
+    int first = 0;
+    int last = -1;
+    bool empty() const { return first > last; }
+    bool contains(int s) const { return s >= first && s <= last; }
+  };
+  ShiftInterval ShiftRangeX(cv::Size frame, int range) const;
+  ShiftInterval ShiftRangeY(cv::Size frame, int range) const;
+
+  const SampleSet& samples() const { return samples_; }
+  // The plane the reference values were read from (shared, not copied).
+  const cv::Mat& image() const { return image_; }
+  int type() const { return image_.type(); }
+  int size() const { return samples_.size(); }
+  bool empty() const { return samples_.empty(); }
+
+ private:
+  template <typename T>
+  std::int64_t DistanceImpl(const cv::Mat& current, cv::Point shift) const;
+
+  cv::Mat image_;
+  SampleSet samples_;
+  std::vector<std::uint8_t> values8_;    // CV_8UC1 reference, in SampleSet::Points() order
+  std::vector<std::uint16_t> values16_;  // CV_16UC1 reference
+  std::vector<std::int32_t> single_offsets_;  // y · step + x of each single, in elements
+  std::size_t offsets_step_ = 0;              // the step (elements) single_offsets_ assume
+};
+
+}  // namespace kapfix

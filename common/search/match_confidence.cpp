@@ -1,0 +1,30 @@
+#include "common/search/match_confidence.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <iterator>
+#include <limits>
+
+namespace kapfix {
+
+double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) {
+  if (curve.size() < 2) return 0.0;
+  const auto best = std::min_element(curve.begin(), curve.end(), [](const auto& a, const auto& b) {
+    return a.second < b.second;
+  });
+  std::int64_t rival = std::numeric_limits<std::int64_t>::max();
+  std::int64_t highest = 0;
+  for (auto it = curve.begin(); it != curve.end(); ++it) {
+    highest = std::max(highest, it->second);
+    if (std::abs(it->first - best->first) <= exclusion) continue;
+    const bool below_left = it == curve.begin() || it->second <= std::prev(it)->second;
+    const bool below_right = std::next(it) == curve.end() || it->second <= std::next(it)->second;
+    if (below_left && below_right) rival = std::min(rival, it->second);
+  }
+  if (rival == std::numeric_limits<std::int64_t>::max()) rival = highest;
+  if (rival <= 0) return 0.0;
+  return std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0,
+                    1.0);
+}
+
+}  // namespace kapfix

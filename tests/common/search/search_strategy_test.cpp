@@ -1,0 +1,118 @@
+#include "common/search/search_strategy.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/image/color_channel.hpp"
+#include "tests/support/test_images.hpp"
+
+namespace kapfix {
+namespace {
+
+std::unique_ptr<SearchStrategy> Make(const std::string& name) {
+  std::string error;
+  auto strategy = MakeSearchStrategy(name, &error);
+  EXPECT_NE(strategy, nullptr) << error;
+  return strategy;
+}
+
+TEST(SearchStrategyTest, FactoryKnowsEveryNameAndRefusesOthers) {
+  for (const std::string& name : SearchStrategyNames()) EXPECT_EQ(Make(name)->name(), name);
+  std::string error;
+  EXPECT_EQ(MakeSearchStrategy("h99", &error), nullptr);
+  EXPECT_NE(error.find("h99"), std::string::npos);
+}
+
+TEST(SearchStrategyTest, ExhaustiveScoresEveryShiftInTheHalfOpenRange) {
+  const cv::Mat ref = testing::SmoothTexture({300, 300}, 31);
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll}));
+  SearchOptions options;
+  options.subpixel = false;
+  const SearchResult r = Make("all")->Search(patch, ref, options);
+  EXPECT_EQ(r.evaluations, 200);  // [−100, +100): the thesis's 2,000,000 pixel comparisons
+  EXPECT_EQ(r.pixels_compared, 2'000'000);
+}
+
+TEST(SearchStrategyTest, EveryStrategyFindsModerateShiftsOnARealPhoto) {
+  const cv::Mat photo = testing::LoadOpenCvPhoto("aero1.jpg");
+  ASSERT_FALSE(photo.empty());
+  const cv::Mat plane = ExtractChannel(photo, ColorChannel::kGreen);
+  const cv::Mat ref = plane(cv::Rect(100, 100, 300, 300)).clone();
+  for (const std::string& name : SearchStrategyNames()) {
+    if (name == "h15" || name == "h17") continue;  // their tables skip shifts; tested apart
+    const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)},
+                                              {SamplingKind::kRandom, 0.1, 1}));
+    for (const int dx : {-45, -12, 0, 6, 58}) {
+      // Content moves by dx when the window over the photo moves by −dx.
+      const cv::Mat cur = plane(cv::Rect(100 - dx, 100, 300, 300)).clone();
+      const SearchResult r = Make(name)->Search(patch, cur, {});
+      ASSERT_TRUE(r.found);
+      EXPECT_EQ(r.shift.x, dx) << name;
+      EXPECT_NEAR(r.displacement.x, dx, 0.5) << name;
+    }
+  }
+}
+
+TEST(SearchStrategyTest, SearchAlongYFindsAVerticalShift) {
+  const cv::Mat ref = testing::SmoothTexture({300, 300}, 32, 6.0);
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll}));
+  SearchOptions options;
+  options.axis = SearchAxis::kY;
+  for (const std::string name : {"all", "h23", "pyr"}) {
+    const SearchResult r = Make(name)->Search(patch, testing::Translated(ref, 0, -27), options);
+    EXPECT_EQ(r.shift, cv::Point(0, -27)) << name;
+  }
+}
+
+TEST(SearchStrategyTest, SearchAlongBothAxesFindsADiagonalShift) {
+  const cv::Mat ref = testing::SmoothTexture({300, 300}, 33, 8.0);
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll}));
+  SearchOptions options;
+  options.axis = SearchAxis::kBoth;
+  for (const std::string name : {"all", "pyr"}) {
+    // Separable search: the X pass runs at y = 0, so the Y offset must stay small enough for
+    // the X curve to keep its minimum (SPEC §2.3 "document the cost").
+    const SearchResult r = Make(name)->Search(patch, testing::Translated(ref, 21, 3), options);
+    EXPECT_EQ(r.shift, cv::Point(21, 3)) << name;
+  }
+}
+
+TEST(SearchStrategyTest, SubpixelRecoversAFractionalShift) {
+  const cv::Mat ref = testing::SmoothTexture({300, 300}, 34, 5.0);
+  cv::Mat cur;
+  const cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, 10.3, 0, 1, 0);
+  cv::warpAffine(ref, cur, m, ref.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll}));
+  const SearchResult r = Make("all")->Search(patch, cur, {});
+  EXPECT_EQ(r.shift.x, 10);
+  EXPECT_NEAR(r.displacement.x, 10.3, 0.12);
+}
+
+TEST(SearchStrategyTest, ConfidenceIsHighOnATextureAndLowOnAFlatPatch) {
+  const cv::Mat textured = testing::SmoothTexture({300, 300}, 35, 4.0);
+  const cv::Mat flat(300, 300, CV_8UC1, cv::Scalar(128));
+  const SampleSet set({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll});
+  const SearchResult sharp =
+      Make("all")->Search(ReferencePatch(textured, set), testing::Translated(textured, 5, 0), {});
+  const SearchResult ambiguous = Make("all")->Search(ReferencePatch(flat, set), flat, {});
+  EXPECT_GT(sharp.confidence, 0.5);
+  EXPECT_LT(ambiguous.confidence, 0.05);
+}
+
+TEST(SearchStrategyTest, NothingFoundWhenThePatchCannotMove) {
+  const cv::Mat ref = testing::SmoothTexture({100, 100}, 36);
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(0, 0, 100, 100)}, {SamplingKind::kAll}));
+  const cv::Mat small(50, 50, CV_8UC1, cv::Scalar(0));
+  EXPECT_FALSE(Make("h23")->Search(patch, small, {}).found);
+  EXPECT_FALSE(Make("pyr")->Search(patch, small, {}).found);
+}
+
+TEST(SearchStrategyTest, OptionsRefuseAnOutOfRangeRange) {
+  SearchOptions options;
+  options.range = 0;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("range"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kapfix
