@@ -1,0 +1,57 @@
+#include "bench/peer_matchers.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+namespace kapfix::bench {
+
+SearchResult MatchTemplatePeer::Search(const ReferencePatch& reference, const cv::Mat& current,
+                                       const SearchOptions& /*options*/) const {
+  const cv::Rect box = reference.samples().bounds();
+  cv::Mat scores;
+  cv::matchTemplate(current, reference.image()(box), scores, cv::TM_SQDIFF);
+  double lowest = 0;
+  cv::Point at;
+  cv::minMaxLoc(scores, &lowest, nullptr, &at, nullptr);
+  SearchResult result;
+  result.found = true;
+  result.shift = at - box.tl();
+  result.displacement = result.shift;
+  result.distance = static_cast<std::int64_t>(lowest);
+  result.evaluations = scores.rows * scores.cols;
+  result.pixels_compared = static_cast<std::int64_t>(result.evaluations) * box.area();
+  return result;
+}
+
+SearchResult PhaseCorrelatePeer::Search(const ReferencePatch& reference, const cv::Mat& current,
+                                        const SearchOptions& /*options*/) const {
+  cv::Mat windowed_reference;
+  cv::Mat window;
+  {
+    std::lock_guard lock(mutex_);
+    if (cached_data_ != reference.image().data || window_.size() != current.size()) {
+      cv::createHanningWindow(window_, current.size(), CV_64F);
+      cv::Mat as_float;
+      reference.image().convertTo(as_float, CV_64F);
+      cached_reference_ = as_float.mul(window_);
+      cached_data_ = reference.image().data;
+    }
+    windowed_reference = cached_reference_;
+    window = window_;
+  }
+  cv::Mat windowed_current;
+  current.convertTo(windowed_current, CV_64F);
+  windowed_current = windowed_current.mul(window);
+  double response = 0;
+  const cv::Point2d shift = cv::phaseCorrelate(windowed_reference, windowed_current, cv::noArray(),
+                                               &response);
+  SearchResult result;
+  result.found = true;
+  result.displacement = shift;
+  result.shift = {static_cast<int>(std::lround(shift.x)), static_cast<int>(std::lround(shift.y))};
+  result.confidence = response;
+  result.evaluations = 1;
+  result.pixels_compared = current.total();
+  return result;
+}
+
+}  // namespace kapfix::bench

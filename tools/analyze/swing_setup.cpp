@@ -1,0 +1,105 @@
+#include "tools/analyze/swing_setup.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "tools/analyze/progress_reporter.hpp"
+
+namespace kapfix::analyze {
+
+void AddSwingOptions(CLI::App* command, SwingArgs* args) {
+  command->add_option("--image", args->image, "Scene photo the virtual camera looks at")
+      ->required();
+  command->add_option("--frames", args->frames, "Frames of swing to simulate")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100000));
+  command->add_option("--seed", args->seed, "Seed of noise, jitter and sampling")
+      ->capture_default_str();
+  command->add_option("--size", args->size, "Frame size WxH [px]")->capture_default_str();
+  command->add_option("--channel", args->channel, "green or rgb (sum of channels)")
+      ->capture_default_str();
+  command->add_option("--sampling", args->sampling, "all, static, random or random:F")
+      ->capture_default_str();
+  command->add_option("--axis", args->axis, "Search axis: x, y or both")->capture_default_str();
+  command->add_option("--patch", args->patch, "Patch side [px]")
+      ->capture_default_str()
+      ->check(CLI::Range(8, 2000));
+  command->add_flag("--gusts", args->gusts, "Add random gusts to the pendulum");
+  command->add_flag("--no-subpixel", args->no_subpixel, "Integer shifts only (as the thesis)");
+}
+
+cv::Mat LoadScene(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
+  cv::Mat scene = cv::imread(path, cv::IMREAD_COLOR);
+  if (scene.empty()) throw std::runtime_error("cannot read '" + path + "': not an image OpenCV can decode");
+  return scene;
+}
+
+SwingOptions MakeSwingOptions(const SwingArgs& args) {
+  SwingOptions options;
+  int w = 0;
+  int h = 0;
+  char tail = 0;
+  if (std::sscanf(args.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16 ||
+      w > 8000 || h > 8000) {
+    throw std::invalid_argument("--size: expected WxH between 16 and 8000, got '" + args.size + "'");
+  }
+  options.camera.frame_size = {w, h};
+  options.camera.seed = args.seed;
+  options.motion.seed = args.seed;
+  options.motion.gusts = args.gusts;
+  options.frames = args.frames;
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  return options;
+}
+
+ColorChannel MakeColorChannel(const SwingArgs& args) {
+  const auto channel = ParseColorChannel(args.channel);
+  if (!channel) throw std::invalid_argument("--channel: expected green or rgb, got '" + args.channel + "'");
+  return *channel;
+}
+
+SamplingOptions MakeSampling(const SwingArgs& args) {
+  SamplingOptions sampling;
+  std::string error;
+  if (!ParseSamplingOptions(args.sampling, &sampling, &error)) {
+    throw std::invalid_argument("--sampling: " + error);
+  }
+  sampling.seed = args.seed;
+  return sampling;
+}
+
+SearchOptions MakeSearchOptions(const SwingArgs& args) {
+  SearchOptions options;
+  const auto axis = ParseSearchAxis(args.axis);
+  if (!axis) throw std::invalid_argument("--axis: expected x, y or both, got '" + args.axis + "'");
+  options.axis = *axis;
+  options.subpixel = !args.no_subpixel;
+  return options;
+}
+
+std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name) {
+  std::string error;
+  auto strategy = MakeSearchStrategy(name, &error);
+  if (!strategy) throw std::invalid_argument("--strategy: " + error);
+  return strategy;
+}
+
+SwingRecording RecordSwingWithProgress(const SwingArgs& args) {
+  const cv::Mat scene = LoadScene(args.image);
+  const SwingOptions options = MakeSwingOptions(args);
+  ProgressReporter progress("rendering swing");
+  SwingRecording recording =
+      RecordSwing(scene, options, MakeColorChannel(args),
+                  [&](int done, int total) { progress.Update(done, total); });
+  if (recording.upscale_factor > 1.0) {
+    std::fprintf(stderr, "note: scene '%s' (%dx%d) upscaled x%.2f to cover the swing\n",
+                 args.image.c_str(), scene.cols, scene.rows, recording.upscale_factor);
+  }
+  return recording;
+}
+
+}  // namespace kapfix::analyze

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "common/evaluation/swing_recording.hpp"
+#include "common/sampling/sampling_pattern.hpp"
+#include "common/search/search_strategy.hpp"
+
+namespace kapfix::analyze {
+
+// The options shared by the subcommands that fly the open-loop swing of SPEC §3.
+struct SwingArgs {
+  std::string image;
+  int frames = 400;
+  std::uint32_t seed = 1;
+  std::string size = "300x300";  // frame W×H [px]
+  std::string channel = "green";
+  std::string sampling = "random:0.1";
+  std::string axis = "x";
+  int patch = 100;               // [px]
+  bool gusts = false;
+  bool no_subpixel = false;
+};
+
+void AddSwingOptions(CLI::App* command, SwingArgs* args);
+
+// Reads the scene photo; throws std::runtime_error naming the file when it cannot.
+cv::Mat LoadScene(const std::string& path);
+
+// Validated settings from the flags; throws std::invalid_argument with the reason.
+SwingOptions MakeSwingOptions(const SwingArgs& args);
+ColorChannel MakeColorChannel(const SwingArgs& args);
+SamplingOptions MakeSampling(const SwingArgs& args);
+SearchOptions MakeSearchOptions(const SwingArgs& args);
+std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name);
+
+// Renders the swing once, with progress on stderr, and warns there when the scene had to be
+// upscaled to cover the swing.
+SwingRecording RecordSwingWithProgress(const SwingArgs& args);
+
+}  // namespace kapfix::analyze
