@@ -1,0 +1,136 @@
+#include "common/sim/scene_camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "common/sim/sim_random.hpp"
+
+namespace kapfix {
+namespace {
+
+constexpr std::uint64_t kNoiseStream = 0x6e6f697365;  // "noise"
+constexpr int kMaxFrameSide = 20000;                  // [px] sanity bound on frame_size
+
+bool Finite(double v) { return std::isfinite(v); }
+
+cv::Mat ToBgr(const cv::Mat& scene) {
+  if (scene.empty()) throw std::invalid_argument("SceneCamera: the scene image is empty");
+  cv::Mat bgr;
+  switch (scene.type()) {
+    case CV_8UC3:
+      bgr = scene.clone();
+      break;
+    case CV_8UC1:
+      cv::cvtColor(scene, bgr, cv::COLOR_GRAY2BGR);
+      break;
+    case CV_8UC4:
+      cv::cvtColor(scene, bgr, cv::COLOR_BGRA2BGR);
+      break;
+    default:
+      throw std::invalid_argument("SceneCamera: the scene must be 8-bit BGR, grey or BGRA");
+  }
+  return bgr;
+}
+
+}  // namespace
+
+bool SceneCameraOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (frame_size.width < 1 || frame_size.height < 1 || frame_size.width > kMaxFrameSide ||
+      frame_size.height > kMaxFrameSide) {
+    return fail("frame size must be 1…" + std::to_string(kMaxFrameSide) + " px per side, got " +
+                std::to_string(frame_size.width) + "×" + std::to_string(frame_size.height));
+  }
+  if (!Finite(noise_sigma) || noise_sigma < 0) {
+    return fail("noise σ must be ≥ 0 grey levels, got " + std::to_string(noise_sigma));
+  }
+  if (!(brightness_amplitude >= 0 && brightness_amplitude < 1)) {
+    return fail("brightness amplitude must be in [0, 1), got " +
+                std::to_string(brightness_amplitude));
+  }
+  if (!Finite(brightness_period_frames) || brightness_period_frames <= 0) {
+    return fail("brightness period must be > 0 frames, got " +
+                std::to_string(brightness_period_frames));
+  }
+  if (!Finite(blur_sigma) || blur_sigma < 0) {
+    return fail("blur σ must be ≥ 0 px, got " + std::to_string(blur_sigma));
+  }
+  if (!(max_excursion_px >= 0 && max_excursion_px <= kMaxFrameSide)) {
+    return fail("max excursion must be 0…" + std::to_string(kMaxFrameSide) + " px, got " +
+                std::to_string(max_excursion_px));
+  }
+  return true;
+}
+
+SceneCamera::SceneCamera(cv::Mat scene_bgr, SceneCameraOptions options) : options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument("SceneCamera: " + error);
+  cv::Mat scene = ToBgr(scene_bgr);
+  const int excursion = static_cast<int>(std::ceil(options_.max_excursion_px));
+  // At an excursion of e the window's far edge samples scene x = (cols − 1)/2 + e + (W − 1)/2,
+  // which is the last column exactly when cols = W + 2e: no extra margin is needed.
+  const int need_w = options_.frame_size.width + 2 * excursion;
+  const int need_h = options_.frame_size.height + 2 * excursion;
+  const double factor = std::max(
+      {1.0, static_cast<double>(need_w) / scene.cols, static_cast<double>(need_h) / scene.rows});
+  if (factor > 1.0) {
+    // Uniform scale keeps the scene's proportions; ceil and max keep both sides ≥ needed.
+    const cv::Size size(std::max(need_w, static_cast<int>(std::ceil(scene.cols * factor))),
+                        std::max(need_h, static_cast<int>(std::ceil(scene.rows * factor))));
+    cv::resize(scene, scene_, size, 0, 0, cv::INTER_CUBIC);
+    upscale_factor_ = factor;
+  } else {
+    scene_ = scene;
+  }
+}
+
+double SceneCamera::BrightnessGain(int frame) const {
+  return 1.0 + options_.brightness_amplitude *
+                   std::sin(2.0 * std::numbers::pi * frame / options_.brightness_period_frames);
+}
+
+cv::Mat SceneCamera::Capture(int frame, cv::Point2d line_of_sight) const {
+  if (!Finite(line_of_sight.x) || !Finite(line_of_sight.y)) {
+    throw std::invalid_argument("SceneCamera::Capture: line of sight must be finite");
+  }
+  const cv::Size size = options_.frame_size;
+  // Scene coordinate of the window's top-left pixel. Pixel centres sit on integers, so the
+  // centre of an N-pixel span starting at o is o + (N − 1)/2.
+  double ox = (scene_.cols - 1) / 2.0 + line_of_sight.x - (size.width - 1) / 2.0;
+  double oy = (scene_.rows - 1) / 2.0 + line_of_sight.y - (size.height - 1) / 2.0;
+  // Far outside the scene every pixel is a replicated border pixel whichever the distance;
+  // clamping there changes nothing and keeps warpAffine's fixed-point maths from overflowing.
+  ox = std::clamp(ox, -size.width - 2.0, scene_.cols + 2.0);
+  oy = std::clamp(oy, -size.height - 2.0, scene_.rows + 2.0);
+  const cv::Matx23d to_scene(1, 0, ox, 0, 1, oy);
+  cv::Mat window;
+  cv::warpAffine(scene_, window, to_scene, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_REPLICATE);
+
+  const double gain = BrightnessGain(frame);
+  if (gain == 1.0 && options_.blur_sigma == 0.0 && options_.noise_sigma == 0.0) return window;
+  // Float between the steps, so that gain, blur and noise round to 8 bit once.
+  cv::Mat work;
+  window.convertTo(work, CV_32FC3, gain);
+  if (options_.blur_sigma > 0.0) {
+    cv::GaussianBlur(work, work, cv::Size(0, 0), options_.blur_sigma, options_.blur_sigma,
+                     cv::BORDER_REPLICATE);
+  }
+  if (options_.noise_sigma > 0.0) {
+    cv::Mat noise(size, CV_32FC3);
+    cv::RNG rng(SimHash(options_.seed, kNoiseStream, frame));
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, options_.noise_sigma);
+    work += noise;
+  }
+  cv::Mat out;
+  work.convertTo(out, CV_8UC3);  // rounds and saturates to [0, 255]
+  return out;
+}
+
+}  // namespace kapfix

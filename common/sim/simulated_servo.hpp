@@ -1,0 +1,65 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <string>
+
+namespace kapfix {
+
+struct SimulatedServoOptions {
+  double min_deg = -45;                 // [deg] hard limit
+  double max_deg = 45;                  // [deg] hard limit
+  double rate_limit_deg_per_frame = 3;  // [deg/frame] fastest shaft motion
+  double dead_band_deg = 0.05;          // [deg] position errors below this are not corrected
+  double backlash_deg = 0.1;            // [deg] total play between shaft and output
+  int latency_frames = 1;               // [frames] Steps before a command starts to act
+  double initial_deg = 0;               // [deg] shaft and output at start, within the limits
+
+  bool IsValid(std::string* error) const;
+};
+
+// A hobby servo for the closed-loop simulation (SPEC §3, §2.8).
+//
+// Command(target) is clamped to [min, max] and queued; it becomes the shaft's target after
+// latency_frames Steps (latency 0: the very next Step moves towards it; latency 1: the next
+// Step does not yet, the one after does). Commands keep their order; a later one replaces
+// the target once its own delay has passed. NaN commands are ignored (the servo keeps its
+// current target and commanded()), since a broken controller must not move the camera;
+// ±∞ and absurd values are clamped like any other.
+//
+// Each Step the shaft moves towards the target by at most rate_limit; when it is within
+// dead_band of the target it does not move at all. The output is coupled to the shaft
+// through backlash: it stays put while the shaft moves inside the play and is dragged once
+// the gap is taken up, so |shaft − output| ≤ backlash/2 and, after a reversal, the shaft
+// travels the whole backlash before the output follows. Shaft and output never leave
+// [min, max].
+class SimulatedServo {
+ public:
+  // Throws std::invalid_argument for options that are not IsValid.
+  explicit SimulatedServo(SimulatedServoOptions options);
+
+  void Command(double target_deg);
+  // Advances one frame; returns the output angle [deg].
+  double Step();
+
+  double angle() const { return output_; }         // [deg] output (what moves the camera)
+  double shaft() const { return shaft_; }          // [deg] motor side of the backlash
+  double commanded() const { return commanded_; }  // [deg] last accepted, clamped command
+  const SimulatedServoOptions& options() const { return options_; }
+
+ private:
+  struct Pending {
+    std::int64_t active_at_step;  // the Step (0-based) from which it is the target
+    double target_deg;
+  };
+
+  SimulatedServoOptions options_;
+  std::deque<Pending> pending_;
+  std::int64_t steps_ = 0;  // Steps done
+  double target_;
+  double shaft_;
+  double output_;
+  double commanded_;
+};
+
+}  // namespace kapfix
