@@ -1,0 +1,106 @@
+#pragma once
+
+// Framing of kapfix.v1 messages on the link, independent of ZeroMQ: a message travels as a
+// topic string (first frame; ZeroMQ SUB filters on it) and its serialized bytes (second frame).
+// Decoding checks size, well-formedness and protocol version before anything reads a field.
+
+#include <google/protobuf/message.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "kapfix/v1/command.pb.h"
+#include "kapfix/v1/header.pb.h"
+#include "kapfix/v1/version.hpp"
+
+namespace kapfix::v1 {
+
+// Receive size limits [bytes]. Streams: a full-resolution photo travels in chunks of
+// kPhotoChunkBytes, so 4 MiB leaves room for a large JPEG video frame. Commands are small; a
+// command socket should refuse anything larger than kMaxCommandBytes (ZMQ_MAXMSGSIZE).
+inline constexpr std::size_t kMaxMessageBytes = std::size_t{4} << 20U;   // [bytes]
+inline constexpr std::size_t kMaxCommandBytes = std::size_t{64} << 10U;  // [bytes]
+inline constexpr std::size_t kPhotoChunkBytes = std::size_t{1} << 20U;   // [bytes]
+
+// One message ready for the wire.
+struct Envelope {
+  std::string topic;    // TopicFor(message)
+  std::string payload;  // serialized message
+};
+
+// The topic a message type travels under: "telemetry", "video", "slices", "pss",
+// "calibration", "photo", "log", "heartbeat", "command", "reply" or "state". No topic is a
+// prefix of another, so ZeroMQ's prefix subscription selects exactly one. Empty for a type
+// that does not travel on its own (Header, Rect, settings…).
+std::string TopicFor(const google::protobuf::Message& message);
+
+// Every topic, in the order above.
+const std::vector<std::string>& Topics();
+
+// A new, empty message of the type a topic carries; nullptr for an unknown topic.
+std::unique_ptr<google::protobuf::Message> NewMessageForTopic(std::string_view topic);
+
+// Topic and serialized bytes of a message (stamp its header first).
+Envelope Encode(const google::protobuf::Message& message);
+
+// Parses `bytes` into `out` (cleared first) and checks it is fit to use: at most max_bytes
+// long, well-formed, carrying a Header at field 1 whose protocol_version is kProtocolVersion.
+// On failure returns false, leaves `out` cleared, and sets `error` to a sentence naming the
+// problem and `code` (both optional) to what a Reply should carry.
+bool Decode(std::string_view bytes, google::protobuf::Message* out, std::size_t max_bytes,
+            std::string* error, ErrorCode* code = nullptr);
+
+// Decode() that also checks the topic is the one `out`'s type travels under, so bytes
+// published under one topic are never read as another type.
+bool DecodeEnvelope(std::string_view topic, std::string_view bytes, google::protobuf::Message* out,
+                    std::size_t max_bytes, std::string* error, ErrorCode* code = nullptr);
+
+// Now [µs since the Unix epoch] (system clock).
+std::int64_t NowMicros();
+
+// Fills a header for sending: protocol version, agent id, sequence, send time = now, and
+// capture time = now unless it is already set (a frame's capture time is kept).
+void Stamp(Header* header, const std::string& agent_id, std::uint64_t sequence);
+
+// Refuses replayed and stale messages: per sender, every accepted sequence number must be
+// greater than the last one accepted from that sender. Sequence 0 (unset) is refused.
+// The sender key is whatever identifies a peer reliably — the CURVE public key or ZeroMQ
+// routing id of a station, the agent id for an agent's streams — not a field the peer could
+// set at will. Memory is bounded: beyond max_senders, the sender heard from least recently
+// is forgotten. Call Forget() when a sender's connection ends if its numbering restarts.
+// Not thread-safe: one owner (the thread that reads the socket).
+class SequenceGuard {
+ public:
+  explicit SequenceGuard(std::size_t max_senders = 256);
+
+  // True and remembers `sequence` if it is newer than the last one accepted from `sender`;
+  // false with a reason in `error` (optional) otherwise.
+  bool Accept(std::string_view sender, std::uint64_t sequence, std::string* error);
+
+  // Forgets a sender: its next message starts a new numbering.
+  void Forget(std::string_view sender);
+
+  // The last sequence accepted from `sender`, if any.
+  std::optional<std::uint64_t> LastAccepted(std::string_view sender) const;
+
+  std::size_t sender_count() const { return senders_.size(); }
+
+ private:
+  struct Entry {
+    std::uint64_t last_sequence = 0;
+    std::uint64_t last_use = 0;  // value of use_clock_ when last accepted
+  };
+  void EvictLeastRecentlyUsed();
+
+  std::size_t max_senders_;
+  std::uint64_t use_clock_ = 0;
+  std::unordered_map<std::string, Entry> senders_;
+};
+
+}  // namespace kapfix::v1
