@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <array>
 #include <sstream>
@@ -123,10 +124,11 @@ int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int fra
         Pooled& p = pooled[m];
         p.us.insert(p.us.end(), e.search_us.begin(), e.search_us.end());
         const auto n = static_cast<std::int64_t>(e.errors_px.size());
+        const auto nd = static_cast<double>(n);
         p.frames += n;
-        p.within += std::llround(e.within_2px_pct * n / 100.0);
-        p.gross += std::llround(e.gross_fail_pct * n / 100.0);
-        p.pixels += e.pixels_per_estimate * static_cast<double>(n);
+        p.within += std::llround(e.within_2px_pct * nd / 100.0);
+        p.gross += std::llround(e.gross_fail_pct * nd / 100.0);
+        p.pixels += e.pixels_per_estimate * nd;
         std::printf(" %s %.1f", methods[m].label.c_str(), e.gross_fail_pct);
       }
       std::printf("\n");
@@ -179,6 +181,8 @@ int main(int argc, char** argv) {
   app.add_option("--sizes", size_texts, "Frame sizes WxH")->delimiter(',')->capture_default_str();
   app.add_option("--photos", photos, "Photos (file names in --data)")->delimiter(',');
   CLI11_PARSE(app, argc, argv);
+  // One core, as on the platform's board; applies to the OpenCV peers too.
+  cv::setNumThreads(1);
   std::vector<cv::Size> sizes;
   for (const auto& text : size_texts) {
     int w = 0;

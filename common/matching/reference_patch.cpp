@@ -26,6 +26,10 @@ ReferencePatch::ReferencePatch(const cv::Mat& reference, SampleSet samples)
     for (const cv::Point& p : points) values16_.push_back(reference.at<std::uint16_t>(p));
   }
   offsets_step_ = reference.step1();
+  for (const SampleSpan& span : samples_.spans()) {
+    span_offsets_.push_back(static_cast<std::int32_t>(span.y * offsets_step_ + span.x));
+    span_lengths_.push_back(span.length);
+  }
   single_offsets_.reserve(samples_.singles().size());
   for (const cv::Point& p : samples_.singles()) {
     single_offsets_.push_back(static_cast<std::int32_t>(p.y * offsets_step_ + p.x));
@@ -57,16 +61,22 @@ std::int64_t ReferencePatch::DistanceImpl(const cv::Mat& current, cv::Point shif
       return values16_;
     }
   }();
-  std::int64_t sum = 0;
+  const std::size_t step = current.step1();
+  const T* base = current.ptr<T>(shift.y) + shift.x;
   const T* value = values.data();
-  for (const SampleSpan& span : samples_.spans()) {
-    sum += SsdRun(value, current.ptr<T>(span.y + shift.y) + span.x + shift.x, span.length);
-    value += span.length;
+  std::int64_t sum = 0;
+  if (step == offsets_step_) {
+    sum = SsdRows(value, base, span_offsets_.data(), span_lengths_.data(),
+                  static_cast<int>(span_offsets_.size()));
+    value += samples_.size() - single_offsets_.size();
+  } else {
+    for (const SampleSpan& span : samples_.spans()) {
+      sum += SsdRun(value, current.ptr<T>(span.y + shift.y) + span.x + shift.x, span.length);
+      value += span.length;
+    }
   }
   const auto singles = static_cast<int>(single_offsets_.size());
   if (singles == 0) return sum;
-  const std::size_t step = current.step1();
-  const T* base = current.ptr<T>(shift.y) + shift.x;
   if (step == offsets_step_) return sum + SsdGather(value, base, single_offsets_.data(), singles);
   // A current plane laid out differently from the reference (an ROI, say): slow path.
   for (const cv::Point& p : samples_.singles()) {
@@ -74,6 +84,16 @@ std::int64_t ReferencePatch::DistanceImpl(const cv::Mat& current, cv::Point shif
     sum += d * d;
   }
   return sum;
+}
+
+const std::any& ReferencePatch::Derived(const std::string& key,
+                                       const std::function<std::any()>& make) const {
+  std::lock_guard lock(derived_->mutex);
+  for (const auto& [k, value] : derived_->entries) {
+    if (k == key) return value;
+  }
+  derived_->entries.emplace_back(key, make());
+  return derived_->entries.back().second;
 }
 
 std::int64_t ReferencePatch::Distance(const cv::Mat& current, cv::Point shift) const {

@@ -1,7 +1,13 @@
 #pragma once
 
+#include <any>
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <opencv2/core.hpp>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "common/sampling/sample_set.hpp"
@@ -43,7 +49,18 @@ class ReferencePatch {
   int size() const { return samples_.size(); }
   bool empty() const { return samples_.empty(); }
 
+  // Data a search strategy derives from this reference once and reuses for every search
+  // against it (pyr's reduced reference, say). Built by `make` on first use under `key`;
+  // thread-safe. The reference is immutable, so what is derived from it never goes stale;
+  // copies of a ReferencePatch share the cache.
+  const std::any& Derived(const std::string& key, const std::function<std::any()>& make) const;
+
  private:
+  struct DerivedCache {
+    std::mutex mutex;
+    std::vector<std::pair<std::string, std::any>> entries;
+  };
+
   template <typename T>
   std::int64_t DistanceImpl(const cv::Mat& current, cv::Point shift) const;
 
@@ -51,8 +68,11 @@ class ReferencePatch {
   SampleSet samples_;
   std::vector<std::uint8_t> values8_;    // CV_8UC1 reference, in SampleSet::Points() order
   std::vector<std::uint16_t> values16_;  // CV_16UC1 reference
+  std::vector<std::int32_t> span_offsets_;    // y · step + x of each span's first pixel
+  std::vector<std::int32_t> span_lengths_;
   std::vector<std::int32_t> single_offsets_;  // y · step + x of each single, in elements
-  std::size_t offsets_step_ = 0;              // the step (elements) single_offsets_ assume
+  std::size_t offsets_step_ = 0;              // the step (elements) the offsets assume
+  std::shared_ptr<DerivedCache> derived_ = std::make_shared<DerivedCache>();
 };
 
 }  // namespace kapfix

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace kapfix {
@@ -11,6 +12,20 @@ namespace kapfix {
 // Σ (a[i] − b[i])² over n contiguous pixels.
 std::int64_t SsdRun(const std::uint8_t* a, const std::uint8_t* b, int n);
 std::int64_t SsdRun(const std::uint16_t* a, const std::uint16_t* b, int n);
+
+// Σ over `rows` runs of (values − base[offsets[r] …])²: run r compares lengths[r] pixels of
+// `values` (consumed in order) with those starting at base + offsets[r]. One call per search
+// position instead of one per row.
+std::int64_t SsdRows(const std::uint8_t* values, const std::uint8_t* base,
+                     const std::int32_t* offsets, const std::int32_t* lengths, int rows);
+std::int64_t SsdRows(const std::uint16_t* values, const std::uint16_t* base,
+                     const std::int32_t* offsets, const std::int32_t* lengths, int rows);
+
+// Σ (a − b)² over a width × height block of two strided planes (steps in elements).
+std::int64_t SsdBlock(const std::uint8_t* a, std::size_t a_step, const std::uint8_t* b,
+                      std::size_t b_step, int width, int height);
+std::int64_t SsdBlock(const std::uint16_t* a, std::size_t a_step, const std::uint16_t* b,
+                      std::size_t b_step, int width, int height);
 
 // Σ (values[i] − base[offsets[i]])² over n scattered pixels.
 std::int64_t SsdGather(const std::uint8_t* values, const std::uint8_t* base,

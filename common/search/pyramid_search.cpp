@@ -1,189 +1,293 @@
 #include "common/search/pyramid_search.hpp"
 
 #include <algorithm>
+#include <any>
+#include <string>
 #include <cstdlib>
 #include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "common/matching/ssd_kernel.hpp"
-#include "common/search/axis_probe.hpp"
 #include "common/search/match_confidence.hpp"
+#include "common/search/subpixel.hpp"
 
 namespace kapfix {
 namespace {
 
-constexpr int kFineWindow = 2;  // [level pixels] re-scored around the coarser level's best
-constexpr int kBlurMargin = 4;  // [px] context kept around crops for pyrDown's kernel
+constexpr int kBlurMargin = 4;      // [px] context kept around crops for pyrDown's kernel
+constexpr int kMaxDescentSteps = 6;  // 3×3 re-centrings per level before giving up
 
-int FloorTo(int v, int step) { return v >= 0 ? v / step * step : -((-v + step - 1) / step) * step; }
+int FloorDiv(int v, int d) { return v >= 0 ? v / d : -((-v + d - 1) / d); }
 
-// A crop of a plane on a grid aligned to `step`, reduced `levels` times.
+// Scores of the shifts visited at one level. A handful to a few hundred entries, looked up by
+// linear scan: cheaper than a tree's allocations at this size.
+class ScoreMap {
+ public:
+  void reserve(std::size_t n) { entries_.reserve(n); }
+  const std::int64_t* find(cv::Point s) const {
+    for (const auto& [shift, d] : entries_) {
+      if (shift == s) return &d;
+    }
+    return nullptr;
+  }
+  void emplace(cv::Point s, std::int64_t d) { entries_.emplace_back(s, d); }
+  std::int64_t at(cv::Point s) const { return *find(s); }
+  std::size_t size() const { return entries_.size(); }
+  bool empty() const { return entries_.empty(); }
+  auto begin() const { return entries_.begin(); }
+  auto end() const { return entries_.end(); }
+
+ private:
+  std::vector<std::pair<cv::Point, std::int64_t>> entries_;
+};
+
+// A crop of a plane on a grid aligned to 2^levels, and its reductions.
 struct Crop {
   cv::Point origin;              // [px] top-left of the crop in frame coordinates
   std::vector<cv::Mat> pyramid;  // level 0 = full resolution
 };
 
-Crop MakeCrop(const cv::Mat& plane, cv::Rect want, int levels) {
+bool MakeCrop(const cv::Mat& plane, cv::Rect want, int levels, Crop* crop) {
   const int step = 1 << levels;
-  const cv::Rect frame(0, 0, plane.cols, plane.rows);
-  cv::Rect r = want & frame;
-  // Align the top-left to the grid (inside the frame), the size to whole coarse pixels.
-  const int x0 = std::max(0, FloorTo(r.x, step));
-  const int y0 = std::max(0, FloorTo(r.y, step));
-  int w = FloorTo(r.br().x - x0, step);
-  int h = FloorTo(r.br().y - y0, step);
-  w = std::max(w, step);
-  h = std::max(h, step);
-  if (x0 + w > plane.cols) w = FloorTo(plane.cols - x0, step);
-  if (y0 + h > plane.rows) h = FloorTo(plane.rows - y0, step);
-  Crop crop;
-  crop.origin = {x0, y0};
-  crop.pyramid.push_back(plane(cv::Rect(x0, y0, w, h)).clone());
+  const cv::Rect r = want & cv::Rect(0, 0, plane.cols, plane.rows);
+  const int x0 = std::max(0, FloorDiv(r.x, step) * step);
+  const int y0 = std::max(0, FloorDiv(r.y, step) * step);
+  const int w = FloorDiv(std::min(r.br().x, plane.cols) - x0, step) * step;
+  const int h = FloorDiv(std::min(r.br().y, plane.rows) - y0, step) * step;
+  if (w < step || h < step) return false;
+  crop->origin = {x0, y0};
+  crop->pyramid.assign(1, plane(cv::Rect(x0, y0, w, h)).clone());
   for (int l = 1; l <= levels; ++l) {
     cv::Mat down;
-    cv::pyrDown(crop.pyramid.back(), down);
-    crop.pyramid.push_back(down);
+    cv::pyrDown(crop->pyramid.back(), down);
+    crop->pyramid.push_back(down);
   }
-  return crop;
+  // Reduced levels are compared band-passed (the level minus its own blur, re-centred on mid
+  // grey): smooth shading under a brightness drift otherwise looks like a shift along the
+  // shading gradient to SSD, and pulls the coarse minimum away by several pixels.
+  for (int l = 1; l <= levels; ++l) {
+    cv::Mat& level = crop->pyramid[l];
+    cv::Mat blurred;
+    cv::GaussianBlur(level, blurred, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REPLICATE);
+    const double mid = level.depth() == CV_8U ? 128.0 : 32768.0;
+    cv::Mat band;
+    cv::subtract(level, blurred, band, cv::noArray(), CV_32F);
+    band.convertTo(level, level.depth(), 1.0, mid);
+  }
+  return true;
 }
 
-// SSD of a dense rectangle of `a` against the same-sized rectangle of `b` at `b_tl`.
+// Scores shifts at one reduced level over all of the patch's pixels there.
 template <typename T>
-std::int64_t DenseSsd(const cv::Mat& a, cv::Rect a_rect, const cv::Mat& b, cv::Point b_tl) {
-  std::int64_t sum = 0;
-  for (int y = 0; y < a_rect.height; ++y) {
-    sum += SsdRun(a.ptr<T>(a_rect.y + y) + a_rect.x, b.ptr<T>(b_tl.y + y) + b_tl.x,
-                  a_rect.width);
+class LevelScorer {
+ public:
+  LevelScorer(const Crop& ref, const Crop& cur, cv::Rect bounds, int level)
+      : ref_(ref.pyramid[level]), cur_(cur.pyramid[level]) {
+    const int f = 1 << level;
+    // Whole level pixels inside the patch's bounds (crop origins are multiples of f).
+    const int x0 = FloorDiv(bounds.x - ref.origin.x + f - 1, f);
+    const int y0 = FloorDiv(bounds.y - ref.origin.y + f - 1, f);
+    const int x1 = FloorDiv(bounds.br().x - ref.origin.x, f);
+    const int y1 = FloorDiv(bounds.br().y - ref.origin.y, f);
+    patch_ = cv::Rect(x0, y0, x1 - x0, y1 - y0);
+    base_ = patch_.tl() + (ref.origin - cur.origin) / f;
   }
-  return sum;
+
+  bool valid() const {
+    return patch_.width > 0 && patch_.height > 0 &&
+           (patch_ & cv::Rect(0, 0, ref_.cols, ref_.rows)) == patch_;
+  }
+  int area() const { return patch_.area(); }
+
+  // SSD at `shift` (level pixels); false outside the current crop.
+  bool Score(cv::Point shift, std::int64_t* distance) const {
+    const cv::Rect at(base_ + shift, patch_.size());
+    if ((at & cv::Rect(0, 0, cur_.cols, cur_.rows)) != at) return false;
+    *distance = SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x, ref_.step1(),
+                         cur_.ptr<T>(at.y) + at.x, cur_.step1(), patch_.width, patch_.height);
+    return true;
+  }
+
+ private:
+  const cv::Mat& ref_;
+  const cv::Mat& cur_;
+  cv::Rect patch_;
+  cv::Point base_;
+};
+
+// From `start`, re-centres a window of ±(wx, wy) on the lowest scored shift until the centre
+// is the lowest. `score(shift, &d)` returns false where a shift cannot be scored.
+template <typename ScoreFn>
+bool Descend(cv::Point start, int wx, int wy, ScoreFn&& score, ScoreMap* scored, cv::Point* best,
+             int max_steps = kMaxDescentSteps) {
+  cv::Point centre = start;
+  bool any = false;
+  for (int step = 0; step < max_steps; ++step) {
+    cv::Point lowest = centre;
+    std::int64_t lowest_d = -1;
+    for (int dy = -wy; dy <= wy; ++dy) {
+      for (int dx = -wx; dx <= wx; ++dx) {
+        const cv::Point s = centre + cv::Point(dx, dy);
+        std::int64_t d = 0;
+        if (const std::int64_t* known = scored->find(s)) {
+          d = *known;
+        } else {
+          if (!score(s, &d)) continue;
+          scored->emplace(s, d);
+        }
+        any = true;
+        if (lowest_d < 0 || d < lowest_d) {
+          lowest_d = d;
+          lowest = s;
+        }
+      }
+    }
+    if (lowest_d < 0) return any;
+    *best = lowest;
+    if (lowest == centre) break;
+    centre = lowest;
+  }
+  return any;
+}
+
+// The coarse window's error profile along one axis (lowest over the other), for the
+// confidence figure.
+std::map<int, std::int64_t> Profile(const ScoreMap& scored, bool along_x) {
+  std::map<int, std::int64_t> profile;
+  for (const auto& [shift, d] : scored) {
+    const int key = along_x ? shift.x : shift.y;
+    auto it = profile.find(key);
+    if (it == profile.end() || d < it->second) profile[key] = d;
+  }
+  return profile;
 }
 
 template <typename T>
-bool SearchOneAxis(const ReferencePatch& reference, const cv::Mat& current, bool along_x,
-                   cv::Point centre, int range, int levels, bool subpixel, int* best_out,
-                   double* refined_out, double* confidence_out, int* evaluations,
-                   std::int64_t* pixels) {
+SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
+                           const SearchOptions& options, int levels) {
+  SearchResult result;
+  const bool search_x = options.axis != SearchAxis::kY;
+  const bool search_y = options.axis != SearchAxis::kX;
+  const int reach_x = search_x ? options.range : options.cross_range;
+  const int reach_y = search_y ? options.range : options.cross_range;
   const int step = 1 << levels;
   const cv::Rect bounds = reference.samples().bounds();
   const cv::Rect ref_want(bounds.x - kBlurMargin, bounds.y - kBlurMargin,
                           bounds.width + 2 * kBlurMargin, bounds.height + 2 * kBlurMargin);
-  const cv::Point reach = along_x ? cv::Point(range + std::abs(centre.x), std::abs(centre.y))
-                                  : cv::Point(std::abs(centre.x), range + std::abs(centre.y));
-  const cv::Rect cur_want(ref_want.x - reach.x, ref_want.y - reach.y,
-                          ref_want.width + 2 * reach.x, ref_want.height + 2 * reach.y);
-  const Crop ref = MakeCrop(reference.image(), ref_want, levels);
-  const Crop cur = MakeCrop(current, cur_want, levels);
+  const cv::Point o = options.origin;
+  const cv::Rect cur_want(ref_want.x + o.x - reach_x - step, ref_want.y + o.y - reach_y - step,
+                          ref_want.width + 2 * (reach_x + step),
+                          ref_want.height + 2 * (reach_y + step));
+  // The reference's reduced crop depends only on the reference: built once per stored
+  // reference and shared by every later search against it.
+  const auto& ref_any = reference.Derived("pyr/" + std::to_string(levels), [&]() -> std::any {
+    Crop crop;
+    if (!MakeCrop(reference.image(), ref_want, levels, &crop)) return {};
+    return crop;
+  });
+  const Crop* ref_ptr = std::any_cast<Crop>(&ref_any);
+  Crop cur;
+  if (ref_ptr == nullptr || !MakeCrop(current, cur_want, levels, &cur)) return result;
+  const Crop& ref = *ref_ptr;
 
-  // Coarsest level: the patch (bounds, shrunk to whole coarse pixels) searched exhaustively.
-  const cv::Mat& ref_c = ref.pyramid[levels];
-  const cv::Mat& cur_c = cur.pyramid[levels];
-  const cv::Rect patch_c((bounds.x - ref.origin.x + step - 1) / step,
-                         (bounds.y - ref.origin.y + step - 1) / step, bounds.width / step,
-                         bounds.height / step);
-  if (patch_c.width <= 0 || patch_c.height <= 0 ||
-      (patch_c & cv::Rect(0, 0, ref_c.cols, ref_c.rows)) != patch_c) {
-    return false;
-  }
-  // Frame position of the patch at level l and shift s (in level-l pixels) along the axis,
-  // expressed in the current crop's level-l coordinates.
-  const cv::Point base_c = patch_c.tl() + (ref.origin - cur.origin) / step;
-  const cv::Point centre_c(FloorTo(centre.x, step) / step, FloorTo(centre.y, step) / step);
-  const cv::Point unit = along_x ? cv::Point(1, 0) : cv::Point(0, 1);
-  const cv::Point other_c = along_x ? cv::Point(0, centre_c.y) : cv::Point(centre_c.x, 0);
-  const int c_axis = along_x ? centre_c.x : centre_c.y;
-  const int range_c = (range + step - 1) / step;
-  const cv::Rect cur_c_rect(0, 0, cur_c.cols, cur_c.rows);
-  std::map<int, std::int64_t> coarse;
-  for (int s = c_axis - range_c; s <= c_axis + range_c; ++s) {
-    const cv::Point tl = base_c + other_c + unit * s;
-    if ((cv::Rect(tl, patch_c.size()) & cur_c_rect) != cv::Rect(tl, patch_c.size())) continue;
-    coarse[s] = DenseSsd<T>(ref_c, patch_c, cur_c, tl);
-  }
-  if (coarse.empty()) return false;
-  *evaluations += static_cast<int>(coarse.size());
-  *pixels += static_cast<std::int64_t>(coarse.size()) * patch_c.area();
-  *confidence_out = MatchConfidence(coarse, kFineWindow);
-  int best = std::min_element(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) {
-               return a.second < b.second;
-             })->first;
-
-  // Intermediate levels: ±kFineWindow around twice the coarser best, all pixels.
-  for (int l = levels - 1; l >= 1; --l) {
-    const int f = 1 << l;
-    const cv::Mat& ref_l = ref.pyramid[l];
-    const cv::Mat& cur_l = cur.pyramid[l];
-    const cv::Rect patch_l((bounds.x - ref.origin.x + f - 1) / f,
-                           (bounds.y - ref.origin.y + f - 1) / f, bounds.width / f,
-                           bounds.height / f);
-    const cv::Point base_l = patch_l.tl() + (ref.origin - cur.origin) / f;
-    const cv::Point other_l = along_x ? cv::Point(0, FloorTo(centre.y, f) / f)
-                                      : cv::Point(FloorTo(centre.x, f) / f, 0);
-    const cv::Rect cur_l_rect(0, 0, cur_l.cols, cur_l.rows);
-    std::int64_t best_distance = -1;
-    int level_best = 2 * best;
-    for (int s = 2 * best - kFineWindow; s <= 2 * best + kFineWindow; ++s) {
-      const cv::Rect at(base_l + other_l + unit * s, patch_l.size());
-      if ((at & cur_l_rect) != at) continue;
-      const std::int64_t d = DenseSsd<T>(ref_l, patch_l, cur_l, at.tl());
-      ++*evaluations;
-      *pixels += patch_l.area();
-      if (best_distance < 0 || d < best_distance) {
-        best_distance = d;
-        level_best = s;
-      }
+  // Coarsest level: the whole window, jointly.
+  const LevelScorer<T> coarse(ref, cur, bounds, levels);
+  if (!coarse.valid()) return result;
+  const cv::Point centre_c(FloorDiv(o.x, step), FloorDiv(o.y, step));
+  const int rx = (reach_x + step - 1) / step;
+  const int ry = (reach_y + step - 1) / step;
+  ScoreMap coarse_scores;
+  coarse_scores.reserve(static_cast<std::size_t>((2 * rx + 1) * (2 * ry + 1)));
+  for (int sy = centre_c.y - ry; sy <= centre_c.y + ry; ++sy) {
+    for (int sx = centre_c.x - rx; sx <= centre_c.x + rx; ++sx) {
+      std::int64_t d = 0;
+      if (coarse.Score({sx, sy}, &d)) coarse_scores.emplace(cv::Point(sx, sy), d);
     }
+  }
+  if (coarse_scores.empty()) return result;
+  cv::Point best = std::min_element(coarse_scores.begin(), coarse_scores.end(),
+                                    [](const auto& a, const auto& b) {
+                                      return a.second < b.second;
+                                    })->first;
+  double confidence = 1.0;
+  if (search_x) confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, true), 1));
+  if (search_y) confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, false), 1));
+  const int wx = (search_x || options.cross_range > 0) ? 1 : 0;
+  const int wy = (search_y || options.cross_range > 0) ? 1 : 0;
+  if (wx != rx || wy != ry) {
+    // Settle the cross axis at the coarse level.
+    cv::Point settled = best;
+    Descend(best, wx, wy, [&](cv::Point s, std::int64_t* d) { return coarse.Score(s, d); },
+            &coarse_scores, &settled);
+    best = settled;
+  }
+  result.evaluations += static_cast<int>(coarse_scores.size());
+  result.pixels_compared += static_cast<std::int64_t>(coarse_scores.size()) * coarse.area();
+
+  // Finer reduced levels: descend from twice the coarser best, all pixels.
+  for (int l = levels - 1; l >= 1; --l) {
+    const LevelScorer<T> level(ref, cur, bounds, l);
+    if (!level.valid()) return result;
+    ScoreMap scored;
+    cv::Point level_best = best * 2;
+    if (!Descend(best * 2, wx, wy, [&](cv::Point s, std::int64_t* d) { return level.Score(s, d); },
+                 &scored, &level_best)) {
+      return result;
+    }
+    result.evaluations += static_cast<int>(scored.size());
+    result.pixels_compared += static_cast<std::int64_t>(scored.size()) * level.area();
     best = level_best;
   }
 
-  // Full resolution: sampled pixels, ±kFineWindow, then the sub-pixel parabola.
-  AxisProbe probe(reference, current, along_x, along_x ? cv::Point(2 * best, centre.y)
-                                                       : cv::Point(centre.x, 2 * best),
-                  kFineWindow + 1);
-  std::int64_t d = 0;
-  for (int s = 2 * best - kFineWindow; s <= 2 * best + kFineWindow; ++s) probe.Evaluate(s, &d);
-  int fine = 0;
-  if (!probe.Best(&fine, &d)) return false;
-  *refined_out = subpixel ? probe.Refine(&fine) : fine;
-  *best_out = fine;
-  *evaluations += probe.evaluations();
-  *pixels += static_cast<std::int64_t>(probe.evaluations()) * reference.size();
-  return true;
+  // Full resolution: the sampled pixels.
+  ScoreMap scored;
+  cv::Point fine = best * 2;
+  const auto full = [&](cv::Point s, std::int64_t* d) {
+    if (!reference.CanShift(current.size(), s)) return false;
+    *d = reference.Distance(current, s);
+    return true;
+  };
+  // One 3×3 window, not a descent: at full resolution the brightness drift's pull (see
+  // MakeCrop) would walk a descent away from the reduced levels' answer.
+  if (!Descend(best * 2, wx, wy, full, &scored, &fine, /*max_steps=*/1)) return result;
+  // Both neighbours along each searched axis for the parabola.
+  cv::Point2d refined(fine);
+  for (const bool along_x : {true, false}) {
+    if ((along_x && !search_x) || (!along_x && !search_y) || !options.subpixel) continue;
+    const cv::Point unit = along_x ? cv::Point(1, 0) : cv::Point(0, 1);
+    std::int64_t around[3] = {0, 0, 0};
+    bool ok = true;
+    for (int k = -1; k <= 1 && ok; ++k) {
+      const cv::Point s = fine + unit * k;
+      if (const std::int64_t* known = scored.find(s)) {
+        around[k + 1] = *known;
+      } else {
+        ok = full(s, &around[k + 1]);
+        if (ok) scored.emplace(s, around[k + 1]);
+      }
+    }
+    if (ok) {
+      const double offset = ParabolaVertexOffset(around[0], around[1], around[2]);
+      (along_x ? refined.x : refined.y) += offset;
+    }
+  }
+  result.evaluations += static_cast<int>(scored.size());
+  result.pixels_compared += static_cast<std::int64_t>(scored.size()) * reference.size();
+  result.found = true;
+  result.shift = fine;
+  result.displacement = refined;
+  result.distance = scored.at(fine);
+  result.confidence = confidence;
+  return result;
 }
 
 }  // namespace
 
 SearchResult PyramidSearch::Search(const ReferencePatch& reference, const cv::Mat& current,
                                    const SearchOptions& options) const {
-  SearchResult result;
-  cv::Point shift = options.origin;
-  cv::Point2d refined(shift);
-  double confidence = 1.0;
-  for (const bool along_x : {true, false}) {
-    if (along_x ? options.axis == SearchAxis::kY : options.axis == SearchAxis::kX) continue;
-    int best = 0;
-    double sub = 0.0;
-    double axis_confidence = 0.0;
-    const bool ok =
-        reference.type() == CV_8UC1
-            ? SearchOneAxis<std::uint8_t>(reference, current, along_x, shift, options.range,
-                                          levels_, options.subpixel, &best, &sub,
-                                          &axis_confidence, &result.evaluations,
-                                          &result.pixels_compared)
-            : SearchOneAxis<std::uint16_t>(reference, current, along_x, shift, options.range,
-                                           levels_, options.subpixel, &best, &sub,
-                                           &axis_confidence, &result.evaluations,
-                                           &result.pixels_compared);
-    if (!ok) return result;
-    (along_x ? shift.x : shift.y) = best;
-    (along_x ? refined.x : refined.y) = sub;
-    confidence = std::min(confidence, axis_confidence);
-  }
-  result.found = true;
-  result.shift = shift;
-  result.displacement = refined;
-  result.distance = reference.Distance(current, shift);
-  result.confidence = confidence;
-  return result;
+  return reference.type() == CV_8UC1
+             ? SearchPyramid<std::uint8_t>(reference, current, options, levels_)
+             : SearchPyramid<std::uint16_t>(reference, current, options, levels_);
 }
 
 }  // namespace kapfix

@@ -30,6 +30,10 @@ bool SearchOptions::IsValid(std::string* error) const {
     if (error) *error = "search range must be 1…2000 px, got " + std::to_string(range);
     return false;
   }
+  if (cross_range < 0 || cross_range > range) {
+    if (error) *error = "cross range must be 0…range px, got " + std::to_string(cross_range);
+    return false;
+  }
   return true;
 }
 

@@ -27,6 +27,12 @@ void AddSwingOptions(CLI::App* command, SwingArgs* args) {
       ->capture_default_str()
       ->check(CLI::Range(8, 2000));
   command->add_flag("--gusts", args->gusts, "Add random gusts to the pendulum");
+  command->add_option("--jitter", args->jitter_px, "Sigma of the swing's Y jitter [px]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 50.0));
+  command->add_option("--noise", args->noise, "Sigma of the sensor noise [grey levels]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   command->add_flag("--no-subpixel", args->no_subpixel, "Integer shifts only (as the thesis)");
 }
 
@@ -50,6 +56,8 @@ SwingOptions MakeSwingOptions(const SwingArgs& args) {
   options.camera.seed = args.seed;
   options.motion.seed = args.seed;
   options.motion.gusts = args.gusts;
+  options.motion.jitter_sigma_px = args.jitter_px;
+  options.camera.noise_sigma = args.noise;
   options.frames = args.frames;
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);

@@ -22,6 +22,8 @@ struct SwingArgs {
   std::string axis = "x";
   int patch = 100;               // [px]
   bool gusts = false;
+  double jitter_px = 2.0;         // σ of the pendulum's Y jitter [px] (SPEC §3)
+  double noise = 3.0;             // σ of the sensor noise [grey levels]
   bool no_subpixel = false;
 };
 
