@@ -86,6 +86,30 @@ KAPFIX_KERNEL std::int64_t SsdBlock(const std::uint16_t* a, std::size_t a_step,
   return sum;
 }
 
+KAPFIX_KERNEL void SsdSlide(const std::uint8_t* ref, int width, const std::uint8_t* cur,
+                            int shifts, std::int32_t* out) {
+  for (int k = 0; k < width; ++k) {
+    const std::int32_t r = ref[k];
+    const std::uint8_t* c = cur + k;
+    for (int s = 0; s < shifts; ++s) {
+      const std::int32_t d = r - static_cast<std::int32_t>(c[s]);
+      out[s] += d * d;
+    }
+  }
+}
+
+KAPFIX_KERNEL void SsdSlide(const std::uint16_t* ref, int width, const std::uint16_t* cur,
+                            int shifts, std::int64_t* out) {
+  for (int k = 0; k < width; ++k) {
+    const std::int64_t r = ref[k];
+    const std::uint16_t* c = cur + k;
+    for (int s = 0; s < shifts; ++s) {
+      const std::int64_t d = r - static_cast<std::int64_t>(c[s]);
+      out[s] += d * d;
+    }
+  }
+}
+
 KAPFIX_KERNEL std::int64_t SsdGather(const std::uint8_t* values, const std::uint8_t* base,
                                     const std::int32_t* offsets, int n) {
   // Four independent sums keep the loads of scattered pixels overlapping. 32-bit partial sums

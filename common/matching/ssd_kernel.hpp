@@ -27,6 +27,16 @@ std::int64_t SsdBlock(const std::uint8_t* a, std::size_t a_step, const std::uint
 std::int64_t SsdBlock(const std::uint16_t* a, std::size_t a_step, const std::uint16_t* b,
                       std::size_t b_step, int width, int height);
 
+// Sliding SSD of one reference row against one current row for `shifts` consecutive
+// horizontal shifts: out[s] += Σ_k (ref[k] − cur[s + k])², k < width. `cur` must hold
+// width + shifts − 1 pixels. The loop runs over the shifts, so it vectorises however short the
+// row is (a coarse pyramid level's rows are 25 pixels). 32-bit sums: keep width · rows · 255²
+// below 2³¹ for 8-bit input.
+void SsdSlide(const std::uint8_t* ref, int width, const std::uint8_t* cur, int shifts,
+              std::int32_t* out);
+void SsdSlide(const std::uint16_t* ref, int width, const std::uint16_t* cur, int shifts,
+              std::int64_t* out);
+
 // Σ (values[i] − base[offsets[i]])² over n scattered pixels.
 std::int64_t SsdGather(const std::uint8_t* values, const std::uint8_t* base,
                        const std::int32_t* offsets, int n);

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <any>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 #include <cstdlib>
 #include <map>
 #include <opencv2/imgproc.hpp>
@@ -56,7 +59,8 @@ bool MakeCrop(const cv::Mat& plane, cv::Rect want, int levels, Crop* crop) {
   const int h = FloorDiv(std::min(r.br().y, plane.rows) - y0, step) * step;
   if (w < step || h < step) return false;
   crop->origin = {x0, y0};
-  crop->pyramid.assign(1, plane(cv::Rect(x0, y0, w, h)).clone());
+  // A view, not a copy: pyrDown reads the ROI in place.
+  crop->pyramid.assign(1, plane(cv::Rect(x0, y0, w, h)));
   for (int l = 1; l <= levels; ++l) {
     cv::Mat down;
     cv::pyrDown(crop->pyramid.back(), down);
@@ -70,9 +74,7 @@ bool MakeCrop(const cv::Mat& plane, cv::Rect want, int levels, Crop* crop) {
     cv::Mat blurred;
     cv::GaussianBlur(level, blurred, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REPLICATE);
     const double mid = level.depth() == CV_8U ? 128.0 : 32768.0;
-    cv::Mat band;
-    cv::subtract(level, blurred, band, cv::noArray(), CV_32F);
-    band.convertTo(level, level.depth(), 1.0, mid);
+    cv::addWeighted(level, 1.0, blurred, -1.0, mid, level);  // saturating, one pass
   }
   return true;
 }
@@ -98,6 +100,26 @@ class LevelScorer {
            (patch_ & cv::Rect(0, 0, ref_.cols, ref_.rows)) == patch_;
   }
   int area() const { return patch_.area(); }
+
+  // Scores the shifts (sx_first … sx_first + count − 1, sy) at once into `out` (cleared
+  // here), or returns false when any of them leaves the current crop.
+  template <typename Acc>
+  bool ScoreRow(int sx_first, int count, int sy, std::vector<Acc>* out) const {
+    const cv::Rect span(base_.x + sx_first, base_.y + sy, patch_.width + count - 1,
+                        patch_.height);
+    if ((span & cv::Rect(0, 0, cur_.cols, cur_.rows)) != span) return false;
+    out->assign(static_cast<std::size_t>(count), 0);
+    for (int y = 0; y < patch_.height; ++y) {
+      SsdSlide(ref_.ptr<T>(patch_.y + y) + patch_.x, patch_.width,
+               cur_.ptr<T>(span.y + y) + span.x, count, out->data());
+    }
+    return true;
+  }
+  // The range of sx for which a whole row of shifts stays inside the crop, at `sy`.
+  std::pair<int, int> ValidX(int sy) const {
+    if (base_.y + sy < 0 || base_.y + sy + patch_.height > cur_.rows) return {1, 0};
+    return {-base_.x, cur_.cols - patch_.width - base_.x};
+  }
 
   // SSD at `shift` (level pixels); false outside the current crop.
   bool Score(cv::Point shift, std::int64_t* distance) const {
@@ -198,11 +220,14 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   const int ry = (reach_y + step - 1) / step;
   ScoreMap coarse_scores;
   coarse_scores.reserve(static_cast<std::size_t>((2 * rx + 1) * (2 * ry + 1)));
+  using Acc = std::conditional_t<sizeof(T) == 1, std::int32_t, std::int64_t>;
+  std::vector<Acc> row;
   for (int sy = centre_c.y - ry; sy <= centre_c.y + ry; ++sy) {
-    for (int sx = centre_c.x - rx; sx <= centre_c.x + rx; ++sx) {
-      std::int64_t d = 0;
-      if (coarse.Score({sx, sy}, &d)) coarse_scores.emplace(cv::Point(sx, sy), d);
-    }
+    const auto [lo, hi] = coarse.ValidX(sy);
+    const int first = std::max(centre_c.x - rx, lo);
+    const int last = std::min(centre_c.x + rx, hi);
+    if (first > last || !coarse.ScoreRow(first, last - first + 1, sy, &row)) continue;
+    for (int i = 0; i <= last - first; ++i) coarse_scores.emplace(cv::Point(first + i, sy), row[i]);
   }
   if (coarse_scores.empty()) return result;
   cv::Point best = std::min_element(coarse_scores.begin(), coarse_scores.end(),

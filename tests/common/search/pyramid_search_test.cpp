@@ -1,0 +1,75 @@
+#include "common/search/pyramid_search.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/image/color_channel.hpp"
+#include "common/search/exhaustive_search.hpp"
+#include "tests/support/test_images.hpp"
+
+namespace kapfix {
+namespace {
+
+// A 300×300 window of aero1.jpg's green plane whose content is moved by (dx, dy).
+cv::Mat AeroWindow(int dx, int dy, double gain = 1.0) {
+  static const cv::Mat plane =
+      ExtractChannel(testing::LoadOpenCvPhoto("aero1.jpg"), ColorChannel::kGreen);
+  cv::Mat window = plane(cv::Rect(150 - dx, 90 - dy, 300, 300)).clone();
+  if (gain != 1.0) window.convertTo(window, CV_8U, gain);
+  return window;
+}
+
+const SampleSet& CentralRandomTenth() {
+  static const SampleSet set({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kRandom, 0.1, 1});
+  return set;
+}
+
+TEST(PyramidSearchTest, ToleratesCrossAxisWobbleThatDefeatsAnXOnlySearch) {
+  // The kite's view wobbles in Y while it swings in X: a 3-px Y offset on fine aerial texture.
+  const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
+  const cv::Mat current = AeroWindow(-41, 3);
+  const SearchResult pyr = PyramidSearch().Search(reference, current, {});
+  ASSERT_TRUE(pyr.found);
+  EXPECT_NEAR(pyr.displacement.x, -41, 1.0);
+  EXPECT_EQ(pyr.shift.y, 3);  // the cross offset is found, not just tolerated
+  const SearchResult all = ExhaustiveSearch().Search(reference, current, {});
+  EXPECT_GT(std::abs(all.shift.x + 41), 2) << "X-only search unexpectedly robust here";
+}
+
+TEST(PyramidSearchTest, NoCrossRangeMeansAStrictlyOneAxisSearch) {
+  const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
+  SearchOptions options;
+  options.cross_range = 0;
+  const SearchResult r = PyramidSearch().Search(reference, AeroWindow(23, 3), options);
+  EXPECT_EQ(r.shift.y, 0);
+}
+
+TEST(PyramidSearchTest, HoldsItsMinimumUnderABrightnessDrift) {
+  const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
+  const SearchResult r = PyramidSearch().Search(reference, AeroWindow(64, 0, 1.08), {});
+  EXPECT_NEAR(r.displacement.x, 64, 1.0);
+}
+
+TEST(PyramidSearchTest, BuildsTheReducedReferenceOncePerStoredReference) {
+  const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
+  int built = 0;
+  const auto make = [&] {
+    ++built;
+    return std::any(1);
+  };
+  reference.Derived("probe", make);
+  reference.Derived("probe", make);
+  const ReferencePatch copy = reference;  // copies share what was derived
+  copy.Derived("probe", make);
+  EXPECT_EQ(built, 1);
+}
+
+TEST(PyramidSearchTest, ReportsLowConfidenceOnAFlatScene) {
+  const cv::Mat flat(300, 300, CV_8UC1, cv::Scalar(90));
+  const ReferencePatch reference(flat, CentralRandomTenth());
+  const SearchResult r = PyramidSearch().Search(reference, flat, {});
+  ASSERT_TRUE(r.found);
+  EXPECT_LT(r.confidence, 0.05);
+}
+
+}  // namespace
+}  // namespace kapfix
