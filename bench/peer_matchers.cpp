@@ -1,5 +1,6 @@
 #include "bench/peer_matchers.hpp"
 
+#include <any>
 #include <opencv2/imgproc.hpp>
 
 namespace kapfix::bench {
@@ -24,20 +25,21 @@ SearchResult MatchTemplatePeer::Search(const ReferencePatch& reference, const cv
 
 SearchResult PhaseCorrelatePeer::Search(const ReferencePatch& reference, const cv::Mat& current,
                                         const SearchOptions& /*options*/) const {
-  cv::Mat windowed_reference;
-  cv::Mat window;
-  {
-    std::lock_guard lock(mutex_);
-    if (cached_data_ != reference.image().data || window_.size() != current.size()) {
-      cv::createHanningWindow(window_, current.size(), CV_64F);
-      cv::Mat as_float;
-      reference.image().convertTo(as_float, CV_64F);
-      cached_reference_ = as_float.mul(window_);
-      cached_data_ = reference.image().data;
-    }
-    windowed_reference = cached_reference_;
-    window = window_;
-  }
+  struct Windowed {
+    cv::Mat window;
+    cv::Mat reference;
+  };
+  const auto& derived = reference.Derived("phase-correlate", [&] {
+    Windowed w;
+    cv::createHanningWindow(w.window, reference.image().size(), CV_64F);
+    cv::Mat as_float;
+    reference.image().convertTo(as_float, CV_64F);
+    w.reference = as_float.mul(w.window);
+    return std::any(w);
+  });
+  const auto& windowed = std::any_cast<const Windowed&>(derived);
+  const cv::Mat& windowed_reference = windowed.reference;
+  const cv::Mat& window = windowed.window;
   cv::Mat windowed_current;
   current.convertTo(windowed_current, CV_64F);
   windowed_current = windowed_current.mul(window);

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <mutex>
 #include <opencv2/core.hpp>
 
 #include "common/search/search_strategy.hpp"
@@ -19,18 +18,12 @@ class MatchTemplatePeer final : public SearchStrategy {
 // cv::phaseCorrelate over whole frames with a Hann window. Debian's OpenCV 4.6 multiplies the
 // window into its inputs in place when no padding is needed (SPEC §8), so the window is
 // applied here on float copies and phaseCorrelate gets no window. The windowed reference is
-// cached per reference plane (the benchmark keeps one reference per swing).
+// derived once per stored reference (ReferencePatch::Derived).
 class PhaseCorrelatePeer final : public SearchStrategy {
  public:
   std::string name() const override { return "cv::phaseCorrelate"; }
   SearchResult Search(const ReferencePatch& reference, const cv::Mat& current,
                       const SearchOptions& options) const override;
-
- private:
-  mutable std::mutex mutex_;
-  mutable const unsigned char* cached_data_ = nullptr;
-  mutable cv::Mat cached_reference_;
-  mutable cv::Mat window_;
 };
 
 }  // namespace kapfix::bench

@@ -156,7 +156,7 @@ DescentResult Descend(const ErrorSurface& surface, cv::Point start, double slope
 }
 
 SuccessRateMap ComputeSuccessRateMap(const ErrorSurface& surface, const DescentOptions& options,
-                                     std::function<void(int, int)> progress) {
+                                     const std::function<void(int, int)>& progress) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   RequireSurfaceGeometry(surface);

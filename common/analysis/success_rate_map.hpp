@@ -64,6 +64,6 @@ struct SuccessRateMap {
 // called once per surface row when given. Throws std::invalid_argument for invalid options or
 // a surface that is not a square CV_64FC1 matrix of side 2R + 1 with at least one valid cell.
 SuccessRateMap ComputeSuccessRateMap(const ErrorSurface& surface, const DescentOptions& options,
-                                     std::function<void(int, int)> progress = nullptr);
+                                     const std::function<void(int, int)>& progress = nullptr);
 
 }  // namespace kapfix

@@ -131,7 +131,7 @@ KAPFIX_KERNEL std::int64_t SsdGather(const std::uint8_t* values, const std::uint
   }
   std::int64_t sum = static_cast<std::int64_t>(s0) + s1 + s2 + s3;
   for (; i < n; ++i) {
-    const std::int32_t d = values[i] - base[offsets[i]];
+    const std::int64_t d = values[i] - base[offsets[i]];
     sum += d * d;
   }
   return sum;
@@ -148,10 +148,18 @@ KAPFIX_KERNEL std::int64_t SsdGather(const std::uint16_t* values, const std::uin
   return sum;
 }
 
-__attribute__((optimize("no-tree-vectorize"))) std::int64_t SsdRunScalar(const std::uint8_t* a,
-                                                                          const std::uint8_t* b,
-                                                                          int n) {
+#if defined(__clang__)
+#define KAPFIX_NO_VECTORIZE
+#else
+#define KAPFIX_NO_VECTORIZE __attribute__((optimize("no-tree-vectorize")))
+#endif
+
+KAPFIX_NO_VECTORIZE std::int64_t SsdRunScalar(const std::uint8_t* a, const std::uint8_t* b,
+                                              int n) {
   std::int32_t sum = 0;
+#if defined(__clang__)
+#pragma clang loop vectorize(disable) interleave(disable)
+#endif
   for (int i = 0; i < n; ++i) {
     const std::int32_t d = static_cast<std::int32_t>(a[i]) - static_cast<std::int32_t>(b[i]);
     sum += d * d;

@@ -219,7 +219,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   const int rx = (reach_x + step - 1) / step;
   const int ry = (reach_y + step - 1) / step;
   ScoreMap coarse_scores;
-  coarse_scores.reserve(static_cast<std::size_t>((2 * rx + 1) * (2 * ry + 1)));
+  coarse_scores.reserve(static_cast<std::size_t>(2 * rx + 1) * static_cast<std::size_t>(2 * ry + 1));
   using Acc = std::conditional_t<sizeof(T) == 1, std::int32_t, std::int64_t>;
   std::vector<Acc> row;
   for (int sy = centre_c.y - ry; sy <= centre_c.y + ry; ++sy) {

@@ -49,7 +49,7 @@ BoatMotion::BoatMotion(BoatMotionOptions options) : options_(options) {
   if (!options_.IsValid(&error)) throw std::invalid_argument("BoatMotion: " + error);
   for (int k = 0; k < options_.waves; ++k) {
     // Three draws per wave, from consecutive indices of the wave stream.
-    const double ua = SimUniform(options_.seed, kWaveStream, 3 * k);
+    const double ua = SimUniform(options_.seed, kWaveStream, 3 * static_cast<std::int64_t>(k));
     const double up = SimUniform(options_.seed, kWaveStream, 3 * k + 1);
     const double uf = SimUniform(options_.seed, kWaveStream, 3 * k + 2);
     waves_.push_back({ua * options_.wave_amplitude_px,

@@ -68,7 +68,7 @@ bool SceneCameraOptions::IsValid(std::string* error) const {
   return true;
 }
 
-SceneCamera::SceneCamera(cv::Mat scene_bgr, SceneCameraOptions options) : options_(options) {
+SceneCamera::SceneCamera(const cv::Mat& scene_bgr, SceneCameraOptions options) : options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("SceneCamera: " + error);
   cv::Mat scene = ToBgr(scene_bgr);

@@ -32,7 +32,7 @@ class SceneCamera {
  public:
   // The scene may be BGR, grey or BGRA, 8 bit; it is copied. Throws std::invalid_argument
   // for an empty scene, another pixel type or options that are not IsValid.
-  SceneCamera(cv::Mat scene_bgr, SceneCameraOptions options);
+  SceneCamera(const cv::Mat& scene_bgr, SceneCameraOptions options);
 
   // BGR CV_8UC3 frame of frame_size. `line_of_sight` [px, scene pixels after upscaling] must
   // be finite (std::invalid_argument otherwise).

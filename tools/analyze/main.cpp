@@ -26,7 +26,9 @@ void PrintHuman(const nlohmann::json& summary) {
 }  // namespace
 }  // namespace kapfix::analyze
 
-int main(int argc, char** argv) {
+namespace {
+
+int Main(int argc, char** argv) {
   using namespace kapfix::analyze;
   CLI::App app{"kapfix-analyze: offline analysis of the kapfix vision core on photos"};
   app.require_subcommand(1);
@@ -63,4 +65,17 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "kapfix-analyze: " << e.what() << '\n';
+  } catch (...) {
+    std::cerr << "kapfix-analyze: unexpected error\n";
+  }
+  return 1;
 }
