@@ -3,6 +3,7 @@
 // photos. Prints ratios (this machine is shared and noisy: absolute times mean little).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,7 +11,6 @@
 #include <numeric>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <array>
 #include <sstream>
 
 #include "bench/peer_matchers.hpp"
@@ -25,9 +25,9 @@ namespace {
 // Fixed list (issue 2): aerial views, buildings, textures, and the chessboard left01.jpg,
 // repetitive on purpose.
 const std::vector<std::string> kPhotos = {
-    "aero1.jpg",  "aero3.jpg",    "building.jpg", "fruits.jpg",  "baboon.jpg",
-    "leuvenA.jpg", "starry_night.jpg", "left01.jpg", "board.jpg", "home.jpg",
-    "orange.jpg", "messi5.jpg",   "butterfly.jpg"};
+    "aero1.jpg",   "aero3.jpg",        "building.jpg", "fruits.jpg", "baboon.jpg",
+    "leuvenA.jpg", "starry_night.jpg", "left01.jpg",   "board.jpg",  "home.jpg",
+    "orange.jpg",  "messi5.jpg",       "butterfly.jpg"};
 
 struct Method {
   std::string label;
@@ -82,22 +82,27 @@ double VectorisationSpeedup() {
           sink += kernel(a.data() + row * kSide, b.data() + row * kSide, static_cast<int>(kSide));
         }
       }
-      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      best = std::min(
+          best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     if (sink == 42) std::puts("");  // keep the work
     return best;
   };
-  const double vectorised = time([](const std::uint8_t* x, const std::uint8_t* y, int n) { return SsdRun(x, y, n); });
-  const double scalar = time([](const std::uint8_t* x, const std::uint8_t* y, int n) { return SsdRunScalar(x, y, n); });
+  const double vectorised =
+      time([](const std::uint8_t* x, const std::uint8_t* y, int n) { return SsdRun(x, y, n); });
+  const double scalar = time(
+      [](const std::uint8_t* x, const std::uint8_t* y, int n) { return SsdRunScalar(x, y, n); });
   return scalar / vectorised;
 }
 
 int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int frames,
         const std::vector<std::string>& photos) {
-  std::printf("kapfix matcher benchmark: open-loop swing (SPEC §3), %d frames per photo, "
-              "100x100 patch at the centre slice, X axis, OpenCV on one thread.\n"
-              "all/h23/h15 run as published (integer shifts, X only); pyr with sub-pixel and a "
-              "+-4 px cross-axis window. gross = |error| > 10 px.\n", frames);
+  std::printf(
+      "kapfix matcher benchmark: open-loop swing (SPEC §3), %d frames per photo, "
+      "100x100 patch at the centre slice, X axis, OpenCV on one thread.\n"
+      "all/h23/h15 run as published (integer shifts, X only); pyr with sub-pixel and a "
+      "+-4 px cross-axis window. gross = |error| > 10 px.\n",
+      frames);
   std::printf("SSD hot loop: %.1fx faster than the same loop with vectorisation off\n\n",
               VectorisationSpeedup());
   bool targets_met = true;
@@ -126,8 +131,8 @@ int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int fra
         std::string error;
         ParseSamplingOptions(methods[m].sampling, &options.sampling, &error);
         options.search.subpixel = methods[m].subpixel;
-        const SwingEvaluation e = EvaluateSwing(recording.planes, recording.truth, patch,
-                                                *methods[m].strategy, options);
+        const SwingEvaluation e =
+            EvaluateSwing(recording.planes, recording.truth, patch, *methods[m].strategy, options);
         Pooled& p = pooled[m];
         p.us.insert(p.us.end(), e.search_us.begin(), e.search_us.end());
         const auto n = static_cast<std::int64_t>(e.errors_px.size());
@@ -179,14 +184,17 @@ int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int fra
 namespace {
 
 int Main(int argc, char** argv) {
-  CLI::App app{"kapfix-bench-matcher: our search strategies vs cv::matchTemplate and "
-               "cv::phaseCorrelate on the simulated swing"};
+  CLI::App app{
+      "kapfix-bench-matcher: our search strategies vs cv::matchTemplate and "
+      "cv::phaseCorrelate on the simulated swing"};
   std::string data_dir = KAPFIX_OPENCV_DATA_DIR;
   int frames = 400;
   std::vector<std::string> size_texts = {"300x300", "640x480"};
   std::vector<std::string> photos = kapfix::bench::kPhotos;
   app.add_option("--data", data_dir, "Folder of the opencv-doc photos")->capture_default_str();
-  app.add_option("--frames", frames, "Frames per swing")->capture_default_str()->check(CLI::Range(10, 5000));
+  app.add_option("--frames", frames, "Frames per swing")
+      ->capture_default_str()
+      ->check(CLI::Range(10, 5000));
   app.add_option("--sizes", size_texts, "Frame sizes WxH")->delimiter(',')->capture_default_str();
   app.add_option("--photos", photos, "Photos (file names in --data)")->delimiter(',');
   CLI11_PARSE(app, argc, argv);
@@ -197,7 +205,8 @@ int Main(int argc, char** argv) {
     int w = 0;
     int h = 0;
     if (std::sscanf(text.c_str(), "%dx%d", &w, &h) != 2 || w < 200 || h < 200) {
-      std::fprintf(stderr, "kapfix-bench-matcher: --sizes: bad size '%s' (WxH, at least 200x200)\n", text.c_str());
+      std::fprintf(stderr, "kapfix-bench-matcher: --sizes: bad size '%s' (WxH, at least 200x200)\n",
+                   text.c_str());
       return 2;
     }
     sizes.emplace_back(w, h);

@@ -44,8 +44,8 @@ SearchResult PhaseCorrelatePeer::Search(const ReferencePatch& reference, const c
   current.convertTo(windowed_current, CV_64F);
   windowed_current = windowed_current.mul(window);
   double response = 0;
-  const cv::Point2d shift = cv::phaseCorrelate(windowed_reference, windowed_current, cv::noArray(),
-                                               &response);
+  const cv::Point2d shift =
+      cv::phaseCorrelate(windowed_reference, windowed_current, cv::noArray(), &response);
   SearchResult result;
   result.found = true;
   result.displacement = shift;

@@ -21,8 +21,7 @@ bool SwingEvaluationOptions::IsValid(std::string* error) const {
 
 SwingEvaluation EvaluateSwing(const std::vector<cv::Mat>& planes,
                               const std::vector<cv::Point2d>& truth, cv::Rect patch,
-                              const SearchStrategy& strategy,
-                              const SwingEvaluationOptions& options,
+                              const SearchStrategy& strategy, const SwingEvaluationOptions& options,
                               const std::function<void(int, int)>& progress) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
@@ -66,8 +65,8 @@ SwingEvaluation EvaluateSwing(const std::vector<cv::Mat>& planes,
   result.pixels_per_estimate = static_cast<double>(pixels) / n;
   if (!result.search_us.empty()) {
     std::vector<double> sorted = result.search_us;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
-                     sorted.end());
+    std::nth_element(sorted.begin(),
+                     sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     result.median_us_per_estimate = sorted[sorted.size() / 2];
   }
   return result;

@@ -27,11 +27,11 @@ struct SwingEvaluation {
   std::vector<double> errors_px;  // [px] measured − true displacement along the axis, t ≥ 1
   std::vector<double> search_us;  // [µs] time of each search (empty if not timed)
   double mean_abs_err_px = 0.0;
-  double within_2px_pct = 0.0;    // [%] of frames with |error| ≤ within_px
-  double gross_fail_pct = 0.0;    // [%] of frames with |error| > gross_fail_px
+  double within_2px_pct = 0.0;  // [%] of frames with |error| ≤ within_px
+  double gross_fail_pct = 0.0;  // [%] of frames with |error| > gross_fail_px
   double pixels_per_estimate = 0.0;
   double median_us_per_estimate = 0.0;
-  int not_found = 0;              // searches that could score no shift (counted as gross)
+  int not_found = 0;  // searches that could score no shift (counted as gross)
 };
 
 // `planes` are the swing's frames after ExtractChannel; `truth[t]` is where frame 0's content
@@ -39,8 +39,7 @@ struct SwingEvaluation {
 // The error is read along x for SearchAxis kX and kBoth, along y for kY.
 SwingEvaluation EvaluateSwing(const std::vector<cv::Mat>& planes,
                               const std::vector<cv::Point2d>& truth, cv::Rect patch,
-                              const SearchStrategy& strategy,
-                              const SwingEvaluationOptions& options,
+                              const SearchStrategy& strategy, const SwingEvaluationOptions& options,
                               const std::function<void(int, int)>& progress = nullptr);
 
 }  // namespace kapfix

@@ -15,8 +15,8 @@ int ErrorCurve::ArgMin() const {
   return best;
 }
 
-ErrorCurve ComputeErrorCurve(const ReferencePatch& reference, const cv::Mat& current,
-                             bool along_x, int range) {
+ErrorCurve ComputeErrorCurve(const ReferencePatch& reference, const cv::Mat& current, bool along_x,
+                             int range) {
   ErrorCurve curve;
   curve.along_x = along_x;
   const auto interval = along_x ? reference.ShiftRangeX(current.size(), range)

@@ -25,8 +25,8 @@ cv::Point ErrorSurface::ArgMin() const {
   return best;
 }
 
-ErrorSurface ComputeErrorSurface(const ReferencePatch& reference, const cv::Mat& current,
-                                 int range, const std::function<void(int, int)>& progress) {
+ErrorSurface ComputeErrorSurface(const ReferencePatch& reference, const cv::Mat& current, int range,
+                                 const std::function<void(int, int)>& progress) {
   ErrorSurface surface;
   surface.range = range;
   const int side = 2 * range + 1;

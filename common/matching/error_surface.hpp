@@ -21,8 +21,7 @@ struct ErrorSurface {
 };
 
 // Scores every shift; progress(done, total) is called once per row when given.
-ErrorSurface ComputeErrorSurface(const ReferencePatch& reference, const cv::Mat& current,
-                                 int range,
+ErrorSurface ComputeErrorSurface(const ReferencePatch& reference, const cv::Mat& current, int range,
                                  const std::function<void(int, int)>& progress = nullptr);
 
 }  // namespace kapfix

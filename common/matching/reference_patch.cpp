@@ -87,7 +87,7 @@ std::int64_t ReferencePatch::DistanceImpl(const cv::Mat& current, cv::Point shif
 }
 
 const std::any& ReferencePatch::Derived(const std::string& key,
-                                       const std::function<std::any()>& make) const {
+                                        const std::function<std::any()>& make) const {
   std::lock_guard lock(derived_->mutex);
   for (const auto& [k, value] : derived_->entries) {
     if (k == key) return value;

@@ -66,9 +66,9 @@ class ReferencePatch {
 
   cv::Mat image_;
   SampleSet samples_;
-  std::vector<std::uint8_t> values8_;    // CV_8UC1 reference, in SampleSet::Points() order
-  std::vector<std::uint16_t> values16_;  // CV_16UC1 reference
-  std::vector<std::int32_t> span_offsets_;    // y · step + x of each span's first pixel
+  std::vector<std::uint8_t> values8_;       // CV_8UC1 reference, in SampleSet::Points() order
+  std::vector<std::uint16_t> values16_;     // CV_16UC1 reference
+  std::vector<std::int32_t> span_offsets_;  // y · step + x of each span's first pixel
   std::vector<std::int32_t> span_lengths_;
   std::vector<std::int32_t> single_offsets_;  // y · step + x of each single, in elements
   std::size_t offsets_step_ = 0;              // the step (elements) the offsets assume

@@ -3,7 +3,8 @@
 // Each kernel is built twice, for baseline x86-64 (SSE2) and for AVX2, and the loader picks
 // the best one the CPU supports: the shipped binary runs on any x86-64 board and uses the
 // wider registers where they exist.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
 #define KAPFIX_KERNEL __attribute__((target_clones("avx2", "default")))
 #else
 #define KAPFIX_KERNEL
@@ -45,8 +46,8 @@ inline Acc SsdInner(const T* a, const T* b, int n) {
 }  // namespace
 
 KAPFIX_KERNEL std::int64_t SsdRows(const std::uint8_t* values, const std::uint8_t* base,
-                                  const std::int32_t* offsets, const std::int32_t* lengths,
-                                  int rows) {
+                                   const std::int32_t* offsets, const std::int32_t* lengths,
+                                   int rows) {
   std::int64_t sum = 0;
   for (int r = 0; r < rows; ++r) {
     sum += SsdInner<std::uint8_t, std::int32_t>(values, base + offsets[r], lengths[r]);
@@ -56,8 +57,8 @@ KAPFIX_KERNEL std::int64_t SsdRows(const std::uint8_t* values, const std::uint8_
 }
 
 KAPFIX_KERNEL std::int64_t SsdRows(const std::uint16_t* values, const std::uint16_t* base,
-                                  const std::int32_t* offsets, const std::int32_t* lengths,
-                                  int rows) {
+                                   const std::int32_t* offsets, const std::int32_t* lengths,
+                                   int rows) {
   std::int64_t sum = 0;
   for (int r = 0; r < rows; ++r) {
     sum += SsdInner<std::uint16_t, std::int64_t>(values, base + offsets[r], lengths[r]);
@@ -67,8 +68,8 @@ KAPFIX_KERNEL std::int64_t SsdRows(const std::uint16_t* values, const std::uint1
 }
 
 KAPFIX_KERNEL std::int64_t SsdBlock(const std::uint8_t* a, std::size_t a_step,
-                                   const std::uint8_t* b, std::size_t b_step, int width,
-                                   int height) {
+                                    const std::uint8_t* b, std::size_t b_step, int width,
+                                    int height) {
   std::int64_t sum = 0;
   for (int y = 0; y < height; ++y) {
     sum += SsdInner<std::uint8_t, std::int32_t>(a + y * a_step, b + y * b_step, width);
@@ -77,8 +78,8 @@ KAPFIX_KERNEL std::int64_t SsdBlock(const std::uint8_t* a, std::size_t a_step,
 }
 
 KAPFIX_KERNEL std::int64_t SsdBlock(const std::uint16_t* a, std::size_t a_step,
-                                   const std::uint16_t* b, std::size_t b_step, int width,
-                                   int height) {
+                                    const std::uint16_t* b, std::size_t b_step, int width,
+                                    int height) {
   std::int64_t sum = 0;
   for (int y = 0; y < height; ++y) {
     sum += SsdInner<std::uint16_t, std::int64_t>(a + y * a_step, b + y * b_step, width);
@@ -86,8 +87,8 @@ KAPFIX_KERNEL std::int64_t SsdBlock(const std::uint16_t* a, std::size_t a_step,
   return sum;
 }
 
-KAPFIX_KERNEL void SsdSlide(const std::uint8_t* ref, int width, const std::uint8_t* cur,
-                            int shifts, std::int32_t* out) {
+KAPFIX_KERNEL void SsdSlide(const std::uint8_t* ref, int width, const std::uint8_t* cur, int shifts,
+                            std::int32_t* out) {
   for (int k = 0; k < width; ++k) {
     const std::int32_t r = ref[k];
     const std::uint8_t* c = cur + k;
@@ -111,7 +112,7 @@ KAPFIX_KERNEL void SsdSlide(const std::uint16_t* ref, int width, const std::uint
 }
 
 KAPFIX_KERNEL std::int64_t SsdGather(const std::uint8_t* values, const std::uint8_t* base,
-                                    const std::int32_t* offsets, int n) {
+                                     const std::int32_t* offsets, int n) {
   // Four independent sums keep the loads of scattered pixels overlapping. 32-bit partial sums
   // are safe for n / 4 · 255² < 2³¹, i.e. n < 132 000 sampled pixels.
   std::int32_t s0 = 0;
@@ -138,7 +139,7 @@ KAPFIX_KERNEL std::int64_t SsdGather(const std::uint8_t* values, const std::uint
 }
 
 KAPFIX_KERNEL std::int64_t SsdGather(const std::uint16_t* values, const std::uint16_t* base,
-                       const std::int32_t* offsets, int n) {
+                                     const std::int32_t* offsets, int n) {
   std::int64_t sum = 0;
   for (int i = 0; i < n; ++i) {
     const std::int64_t d =
@@ -154,8 +155,7 @@ KAPFIX_KERNEL std::int64_t SsdGather(const std::uint16_t* values, const std::uin
 #define KAPFIX_NO_VECTORIZE __attribute__((optimize("no-tree-vectorize")))
 #endif
 
-KAPFIX_NO_VECTORIZE std::int64_t SsdRunScalar(const std::uint8_t* a, const std::uint8_t* b,
-                                              int n) {
+KAPFIX_NO_VECTORIZE std::int64_t SsdRunScalar(const std::uint8_t* a, const std::uint8_t* b, int n) {
   std::int32_t sum = 0;
 #if defined(__clang__)
 #pragma clang loop vectorize(disable) interleave(disable)

@@ -24,8 +24,8 @@ std::vector<cv::Rect> MakePatchLayout(PatchLayout layout, cv::Size frame, int pa
         throw std::invalid_argument("patch size " + std::to_string(patch_size) +
                                     " does not fit the frame");
       }
-      return {cv::Rect((frame.width - patch_size) / 2, (frame.height - patch_size) / 2,
-                       patch_size, patch_size)};
+      return {cv::Rect((frame.width - patch_size) / 2, (frame.height - patch_size) / 2, patch_size,
+                       patch_size)};
     }
     case PatchLayout::kIndividuals:
       return {ScaleFrom300(50, 50, 50, frame), ScaleFrom300(200, 50, 50, frame),

@@ -28,8 +28,7 @@ void SampleSet::Build(std::vector<cv::Point> points) {
   bounds_ = cv::boundingRect(points);
   for (std::size_t i = 0; i < points.size();) {
     std::size_t j = i + 1;
-    while (j < points.size() && points[j].y == points[i].y &&
-           points[j].x == points[j - 1].x + 1) {
+    while (j < points.size() && points[j].y == points[i].y && points[j].x == points[j - 1].x + 1) {
       ++j;
     }
     const int run = static_cast<int>(j - i);

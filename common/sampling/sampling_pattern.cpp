@@ -77,8 +77,8 @@ std::vector<cv::Point> MakeSamplingPattern(cv::Size patch, const SamplingOptions
       break;
     }
     case SamplingKind::kRandom: {
-      const auto count = std::max<std::size_t>(
-          1, static_cast<std::size_t>(std::lround(options.fraction * area)));
+      const auto count =
+          std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.fraction * area)));
       std::vector<int> pool(static_cast<std::size_t>(area));
       std::iota(pool.begin(), pool.end(), 0);
       std::mt19937 generator(options.seed);

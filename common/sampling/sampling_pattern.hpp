@@ -17,7 +17,7 @@ enum class SamplingKind {
 
 struct SamplingOptions {
   SamplingKind kind = SamplingKind::kRandom;
-  double fraction = 0.1;  // kRandom only: share of the patch's pixels, (0, 1]
+  double fraction = 0.1;   // kRandom only: share of the patch's pixels, (0, 1]
   std::uint32_t seed = 1;  // kRandom only
 
   bool IsValid(std::string* error) const;

@@ -13,9 +13,9 @@ AxisProbe::AxisProbe(const ReferencePatch& reference, const cv::Mat& current, bo
   // The frame's limits for this axis, through the centre's other coordinate.
   const cv::Size frame = current.size();
   const int other = along_x ? centre.y : centre.x;
-  const bool other_fits =
-      along_x ? reference.ShiftRangeY(frame, std::abs(other) + 1).contains(other)
-              : reference.ShiftRangeX(frame, std::abs(other) + 1).contains(other);
+  const bool other_fits = along_x
+                              ? reference.ShiftRangeY(frame, std::abs(other) + 1).contains(other)
+                              : reference.ShiftRangeX(frame, std::abs(other) + 1).contains(other);
   if (!other_fits) return;  // interval_ stays empty
   const int c = along_x ? centre.x : centre.y;
   const auto limits = along_x ? reference.ShiftRangeX(frame, std::abs(c) + range)

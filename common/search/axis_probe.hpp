@@ -13,8 +13,8 @@ namespace kapfix {
 // Shifts outside the frame or outside ±range around the centre are refused.
 class AxisProbe {
  public:
-  AxisProbe(const ReferencePatch& reference, const cv::Mat& current, bool along_x,
-            cv::Point centre, int range);
+  AxisProbe(const ReferencePatch& reference, const cv::Mat& current, bool along_x, cv::Point centre,
+            int range);
 
   // Distance at position `s` on the axis (the shift is centre with its axis component = s);
   // nullopt-like: returns false if `s` cannot be scored.

@@ -9,9 +9,8 @@ namespace kapfix {
 
 double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) {
   if (curve.size() < 2) return 0.0;
-  const auto best = std::min_element(curve.begin(), curve.end(), [](const auto& a, const auto& b) {
-    return a.second < b.second;
-  });
+  const auto best = std::min_element(
+      curve.begin(), curve.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
   std::int64_t rival = std::numeric_limits<std::int64_t>::max();
   std::int64_t highest = 0;
   for (auto it = curve.begin(); it != curve.end(); ++it) {
@@ -23,8 +22,7 @@ double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) 
   }
   if (rival == std::numeric_limits<std::int64_t>::max()) rival = highest;
   if (rival <= 0) return 0.0;
-  return std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0,
-                    1.0);
+  return std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0, 1.0);
 }
 
 }  // namespace kapfix

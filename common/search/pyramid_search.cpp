@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <any>
+#include <cstdlib>
+#include <map>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
-#include <cstdlib>
-#include <map>
-#include <opencv2/imgproc.hpp>
 
 #include "common/matching/ssd_kernel.hpp"
 #include "common/search/match_confidence.hpp"
@@ -17,7 +17,7 @@
 namespace kapfix {
 namespace {
 
-constexpr int kBlurMargin = 4;      // [px] context kept around crops for pyrDown's kernel
+constexpr int kBlurMargin = 4;       // [px] context kept around crops for pyrDown's kernel
 constexpr int kMaxDescentSteps = 6;  // 3×3 re-centrings per level before giving up
 
 int FloorDiv(int v, int d) { return v >= 0 ? v / d : -((-v + d - 1) / d); }
@@ -105,13 +105,12 @@ class LevelScorer {
   // here), or returns false when any of them leaves the current crop.
   template <typename Acc>
   bool ScoreRow(int sx_first, int count, int sy, std::vector<Acc>* out) const {
-    const cv::Rect span(base_.x + sx_first, base_.y + sy, patch_.width + count - 1,
-                        patch_.height);
+    const cv::Rect span(base_.x + sx_first, base_.y + sy, patch_.width + count - 1, patch_.height);
     if ((span & cv::Rect(0, 0, cur_.cols, cur_.rows)) != span) return false;
     out->assign(static_cast<std::size_t>(count), 0);
     for (int y = 0; y < patch_.height; ++y) {
-      SsdSlide(ref_.ptr<T>(patch_.y + y) + patch_.x, patch_.width,
-               cur_.ptr<T>(span.y + y) + span.x, count, out->data());
+      SsdSlide(ref_.ptr<T>(patch_.y + y) + patch_.x, patch_.width, cur_.ptr<T>(span.y + y) + span.x,
+               count, out->data());
     }
     return true;
   }
@@ -125,8 +124,8 @@ class LevelScorer {
   bool Score(cv::Point shift, std::int64_t* distance) const {
     const cv::Rect at(base_ + shift, patch_.size());
     if ((at & cv::Rect(0, 0, cur_.cols, cur_.rows)) != at) return false;
-    *distance = SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x, ref_.step1(),
-                         cur_.ptr<T>(at.y) + at.x, cur_.step1(), patch_.width, patch_.height);
+    *distance = SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x, ref_.step1(), cur_.ptr<T>(at.y) + at.x,
+                         cur_.step1(), patch_.width, patch_.height);
     return true;
   }
 
@@ -219,7 +218,8 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   const int rx = (reach_x + step - 1) / step;
   const int ry = (reach_y + step - 1) / step;
   ScoreMap coarse_scores;
-  coarse_scores.reserve(static_cast<std::size_t>(2 * rx + 1) * static_cast<std::size_t>(2 * ry + 1));
+  coarse_scores.reserve(static_cast<std::size_t>(2 * rx + 1) *
+                        static_cast<std::size_t>(2 * ry + 1));
   using Acc = std::conditional_t<sizeof(T) == 1, std::int32_t, std::int64_t>;
   std::vector<Acc> row;
   for (int sy = centre_c.y - ry; sy <= centre_c.y + ry; ++sy) {
@@ -230,20 +230,22 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
     for (int i = 0; i <= last - first; ++i) coarse_scores.emplace(cv::Point(first + i, sy), row[i]);
   }
   if (coarse_scores.empty()) return result;
-  cv::Point best = std::min_element(coarse_scores.begin(), coarse_scores.end(),
-                                    [](const auto& a, const auto& b) {
-                                      return a.second < b.second;
-                                    })->first;
+  cv::Point best =
+      std::min_element(coarse_scores.begin(), coarse_scores.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; })
+          ->first;
   double confidence = 1.0;
   if (search_x) confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, true), 1));
-  if (search_y) confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, false), 1));
+  if (search_y)
+    confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, false), 1));
   const int wx = (search_x || options.cross_range > 0) ? 1 : 0;
   const int wy = (search_y || options.cross_range > 0) ? 1 : 0;
   if (wx != rx || wy != ry) {
     // Settle the cross axis at the coarse level.
     cv::Point settled = best;
-    Descend(best, wx, wy, [&](cv::Point s, std::int64_t* d) { return coarse.Score(s, d); },
-            &coarse_scores, &settled);
+    Descend(
+        best, wx, wy, [&](cv::Point s, std::int64_t* d) { return coarse.Score(s, d); },
+        &coarse_scores, &settled);
     best = settled;
   }
   result.evaluations += static_cast<int>(coarse_scores.size());
@@ -255,8 +257,9 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
     if (!level.valid()) return result;
     ScoreMap scored;
     cv::Point level_best = best * 2;
-    if (!Descend(best * 2, wx, wy, [&](cv::Point s, std::int64_t* d) { return level.Score(s, d); },
-                 &scored, &level_best)) {
+    if (!Descend(
+            best * 2, wx, wy, [&](cv::Point s, std::int64_t* d) { return level.Score(s, d); },
+            &scored, &level_best)) {
       return result;
     }
     result.evaluations += static_cast<int>(scored.size());

@@ -49,8 +49,8 @@ std::unique_ptr<SearchStrategy> MakeSearchStrategy(std::string_view name, std::s
     if (preset.name == name) return std::make_unique<HierarchicalSearch>(preset);
   }
   if (error) {
-    *error = "unknown search strategy '" + std::string(name) +
-             "' (all, h23, h21, h19, h17, h15 or pyr)";
+    *error =
+        "unknown search strategy '" + std::string(name) + "' (all, h23, h21, h19, h17, h15 or pyr)";
   }
   return nullptr;
 }

@@ -23,9 +23,9 @@ std::string_view ToString(SearchAxis axis);
 
 struct SearchOptions {
   SearchAxis axis = SearchAxis::kX;
-  int range = 100;           // R [px]: shifts in [origin − R, origin + R]
-  bool subpixel = true;      // parabola through the best shift and its two neighbours
-  cv::Point origin{0, 0};    // [px] the shift the search is centred on
+  int range = 100;         // R [px]: shifts in [origin − R, origin + R]
+  bool subpixel = true;    // parabola through the best shift and its two neighbours
+  cv::Point origin{0, 0};  // [px] the shift the search is centred on
   // [px] "pyr" only: how far across a single search axis it also looks. A kite's pendulum
   // swings along X but the view still wobbles by a few pixels in Y (SPEC §3: σ = 2 px), and on
   // fine texture that alone moves an X-only minimum by up to tens of pixels. The thesis's

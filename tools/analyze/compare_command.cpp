@@ -18,8 +18,7 @@ namespace {
 struct CompareArgs {
   SwingArgs swing;
   std::string strategies = "all,h23,h15";
-  int slice = 5;
-  int slices = 9;
+  SliceArgs where;
 };
 
 std::vector<std::string> SplitList(const std::string& text) {
@@ -41,22 +40,22 @@ nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
   options.search = MakeSearchOptions(args.swing);
   const SwingRecording recording = RecordSwingWithProgress(args.swing);
   const cv::Rect patch =
-      SlicePatch(recording.planes.front().size(), args.slices, args.slice, args.swing.patch);
+      SlicePatch(recording.planes.front().size(), args.where.slices, args.where.slice, args.swing.patch);
 
   ProgressReporter progress("compare");
   nlohmann::json per_strategy = nlohmann::json::array();
   std::vector<std::vector<double>> abs_errors;
   std::vector<PlotSeries> series;
-  const cv::Scalar colors[] = {{200, 80, 20}, {40, 160, 40}, {20, 20, 200}, {160, 40, 160},
+  const cv::Scalar colors[] = {{200, 80, 20},  {40, 160, 40}, {20, 20, 200}, {160, 40, 160},
                                {20, 160, 200}, {120, 120, 0}, {0, 0, 0}};
   for (std::size_t i = 0; i < strategies.size(); ++i) {
     progress.SetStage(names[i]);
-    const SwingEvaluation e = EvaluateSwing(
-        recording.planes, recording.truth, patch, *strategies[i], options,
-        [&](int done, int total) {
-          progress.Update(static_cast<int>(i) * total + done,
-                          static_cast<int>(strategies.size()) * total);
-        });
+    const SwingEvaluation e =
+        EvaluateSwing(recording.planes, recording.truth, patch, *strategies[i], options,
+                      [&](int done, int total) {
+                        progress.Update(static_cast<int>(i) * total + done,
+                                        static_cast<int>(strategies.size()) * total);
+                      });
     std::vector<double> abs;
     for (const double err : e.errors_px) abs.push_back(std::isfinite(err) ? std::abs(err) : 1e9);
     abs_errors.push_back(abs);
@@ -76,7 +75,7 @@ nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
                   RenderLinePlot("errors per strategy", "frame", "error [px]", series));
   return {{"image", args.swing.image},
           {"frames", static_cast<int>(recording.planes.size())},
-          {"slice", args.slice},
+          {"slice", args.where.slice},
           {"strategies", per_strategy},
           {"kruskal_wallis_h", kw.h_corrected},
           {"p_value", kw.p_value},
@@ -93,15 +92,9 @@ void AddCompareCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   AddOutputOptions(command, output);
   command->add_option("--strategies", args->strategies, "Comma-separated strategy names")
       ->capture_default_str();
-  command->add_option("--slice", args->slice, "Slice holding the patch (1 = top)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 99));
-  command->add_option("--slices", args->slices, "Number of slices")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 99));
-  command->callback([args, run] {
-    *run = [args](ReportWriter& report) { return RunCompare(*args, report); };
-  });
+  AddSliceOptions(command, &args->where);
+  command->callback(
+      [args, run] { *run = [args](ReportWriter& report) { return RunCompare(*args, report); }; });
 }
 
 }  // namespace kapfix::analyze

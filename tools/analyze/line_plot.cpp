@@ -37,7 +37,8 @@ std::string Number(double v) {
 
 void DrawSeries(cv::Mat& canvas, cv::Rect area, const Range& range, const PlotSeries& s) {
   cv::Point previous(-1, -1);
-  const double xs = s.y.size() > 1 ? static_cast<double>(area.width) / static_cast<double>(range.n - 1) : 0.0;
+  const double xs =
+      s.y.size() > 1 ? static_cast<double>(area.width) / static_cast<double>(range.n - 1) : 0.0;
   for (std::size_t i = 0; i < s.y.size(); ++i) {
     if (!std::isfinite(s.y[i])) {
       previous = {-1, -1};

@@ -26,9 +26,9 @@ nlohmann::json RunPss(const PssArgs& args, ReportWriter& report) {
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   const SwingRecording recording = RecordSwingWithProgress(args.swing);
   ProgressReporter progress("pss");
-  const PatchSizeSelection selection = SelectPatchSize(
-      recording.planes, *strategy, options,
-      [&](int done, int total) { progress.Update(done, total); });
+  const PatchSizeSelection selection =
+      SelectPatchSize(recording.planes, *strategy, options,
+                      [&](int done, int total) { progress.Update(done, total); });
   nlohmann::json sizes = nlohmann::json::array();
   std::vector<double> size_column;
   std::vector<double> dc_column;
@@ -51,8 +51,8 @@ nlohmann::json RunPss(const PssArgs& args, ReportWriter& report) {
 
 void AddPssCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   auto args = std::make_shared<PssArgs>();
-  CLI::App* command = app.add_subcommand(
-      "pss", "Patch Size Selection on a simulated free swing (SPEC §2.5)");
+  CLI::App* command =
+      app.add_subcommand("pss", "Patch Size Selection on a simulated free swing (SPEC §2.5)");
   AddSwingOptions(command, &args->swing);
   AddOutputOptions(command, output);
   command->add_option("--strategy", args->strategy, "Search strategy fixation will use")
@@ -60,9 +60,8 @@ void AddPssCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   command->add_option("--sizes", args->sizes, "Candidate patch sides [px], comma-separated")
       ->delimiter(',')
       ->capture_default_str();
-  command->callback([args, run] {
-    *run = [args](ReportWriter& report) { return RunPss(*args, report); };
-  });
+  command->callback(
+      [args, run] { *run = [args](ReportWriter& report) { return RunPss(*args, report); }; });
 }
 
 }  // namespace kapfix::analyze

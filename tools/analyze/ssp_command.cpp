@@ -25,6 +25,24 @@ struct SspArgs {
   bool validate = false;
 };
 
+// Each slice score as a column, in slice order.
+struct ScoreColumns {
+  explicit ScoreColumns(const std::vector<SliceScore>& slices) {
+    for (const SliceScore& s : slices) {
+      index.push_back(s.index);
+      dc.push_back(s.dc);
+      dc_hysteresis.push_back(s.dc_hysteresis);
+      fft.push_back(s.fft);
+      single_shot.push_back(s.single_shot);
+    }
+  }
+  std::vector<double> index;
+  std::vector<double> dc;
+  std::vector<double> dc_hysteresis;
+  std::vector<double> fft;
+  std::vector<double> single_shot;
+};
+
 nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   const auto strategy = MakeStrategy(args.strategy);
   const auto score = ParseSliceScoreKind(args.score);
@@ -46,9 +64,9 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
 
   const SwingRecording recording = RecordSwingWithProgress(args.swing);
   ProgressReporter progress("ssp");
-  const SliceSelection selection = SelectSlice(
-      recording.planes, *strategy, options,
-      [&](int done, int total) { progress.Update(done, total); });
+  const SliceSelection selection =
+      SelectSlice(recording.planes, *strategy, options,
+                  [&](int done, int total) { progress.Update(done, total); });
 
   nlohmann::json slices = nlohmann::json::array();
   std::vector<PlotSeries> graphs;
@@ -78,6 +96,7 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
                             {"ranking", selection.ranking},
                             {"best_slice", selection.best_slice}};
 
+  const ScoreColumns columns(selection.slices);
   std::vector<double> gross;
   if (args.validate) {
     // Fixation on each slice's stored reference through the same swing, against the truth.
@@ -96,48 +115,31 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
       summary["slices"][i]["mean_abs_err_px"] = e.mean_abs_err_px;
       gross.push_back(e.gross_fail_pct);
     }
-    std::vector<double> dc;
-    std::vector<double> dc_hyst;
-    std::vector<double> fft;
-    std::vector<double> single_shot;
-    for (const SliceScore& s : selection.slices) {
-      dc.push_back(s.dc);
-      dc_hyst.push_back(s.dc_hysteresis);
-      fft.push_back(s.fft);
-      single_shot.push_back(s.single_shot);
-    }
     // A good score correlates positively with failures for DC and FFT (fewer is better) and
     // negatively for single-shot (higher is better). Undefined (null) when every slice failed
     // equally often.
     auto rho = [&](const std::vector<double>& values) -> nlohmann::json {
-      const double r = SpearmanCorrelation(values, gross);
-      return std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr);
+      try {
+        const double r = SpearmanCorrelation(values, gross);
+        return std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr);
+      } catch (const std::invalid_argument&) {
+        return nullptr;  // a constant sequence has no rank correlation
+      }
     };
-    summary["spearman"] = {{"dc", rho(dc)},
-                           {"dc-hyst", rho(dc_hyst)},
-                           {"fft", rho(fft)},
-                           {"single-shot", rho(single_shot)}};
+    summary["spearman"] = {{"dc", rho(columns.dc)},
+                           {"dc-hyst", rho(columns.dc_hysteresis)},
+                           {"fft", rho(columns.fft)},
+                           {"single-shot", rho(columns.single_shot)}};
   }
 
-  std::vector<double> index;
-  std::vector<double> dc;
-  std::vector<double> dc_hyst;
-  std::vector<double> fft;
-  std::vector<double> single_shot;
-  for (const SliceScore& s : selection.slices) {
-    index.push_back(s.index);
-    dc.push_back(s.dc);
-    dc_hyst.push_back(s.dc_hysteresis);
-    fft.push_back(s.fft);
-    single_shot.push_back(s.single_shot);
-  }
   std::vector<std::string> header = {"slice", "dc", "dc_hysteresis", "fft", "single_shot"};
-  std::vector<std::vector<double>> columns = {index, dc, dc_hyst, fft, single_shot};
+  std::vector<std::vector<double>> table = {columns.index, columns.dc, columns.dc_hysteresis,
+                                            columns.fft, columns.single_shot};
   if (!gross.empty()) {
     header.emplace_back("gross_fail_pct");
-    columns.push_back(gross);
+    table.push_back(gross);
   }
-  report.WriteCsv("slices.csv", header, columns);
+  report.WriteCsv("slices.csv", header, table);
   report.WriteCsv("graphs.csv", graph_header, graph_columns);
   report.WritePng("slices.png", RenderSmallMultiples("displacement graph per slice [px]", graphs));
   return summary;
@@ -147,8 +149,8 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
 
 void AddSspCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   auto args = std::make_shared<SspArgs>();
-  CLI::App* command = app.add_subcommand(
-      "ssp", "Slice Selection Process on a simulated free swing (SPEC §2.6)");
+  CLI::App* command =
+      app.add_subcommand("ssp", "Slice Selection Process on a simulated free swing (SPEC §2.6)");
   AddSwingOptions(command, &args->swing);
   AddOutputOptions(command, output);
   command->add_option("--strategy", args->strategy, "Search strategy fixation will use")
@@ -161,17 +163,18 @@ void AddSspCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   command->add_option("--hysteresis", args->hysteresis_px, "Hysteresis of dc-hyst [px]")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
-  command->add_option("--deadline-frames", args->deadline_frames,
-                      "Stop after this many frames (0 = all)")
+  command
+      ->add_option("--deadline-frames", args->deadline_frames,
+                   "Stop after this many frames (0 = all)")
       ->capture_default_str();
-  command->add_option("--deadline-seconds", args->deadline_seconds,
-                      "Stop after this many seconds (0 = no limit)")
+  command
+      ->add_option("--deadline-seconds", args->deadline_seconds,
+                   "Stop after this many seconds (0 = no limit)")
       ->capture_default_str();
   command->add_flag("--validate", args->validate,
                     "Also fixate every slice and correlate each score with its failure rate");
-  command->callback([args, run] {
-    *run = [args](ReportWriter& report) { return RunSsp(*args, report); };
-  });
+  command->callback(
+      [args, run] { *run = [args](ReportWriter& report) { return RunSsp(*args, report); }; });
 }
 
 }  // namespace kapfix::analyze

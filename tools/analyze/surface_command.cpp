@@ -32,13 +32,15 @@ struct SurfaceArgs {
 cv::Mat SquareFrame(const cv::Mat& photo, int side) {
   const double scale = static_cast<double>(side) / std::min(photo.cols, photo.rows);
   cv::Mat scaled;
-  cv::resize(photo, scaled, cv::Size(), scale, scale, scale < 1 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  cv::resize(photo, scaled, cv::Size(), scale, scale,
+             scale < 1 ? cv::INTER_AREA : cv::INTER_LINEAR);
   const cv::Rect centre((scaled.cols - side) / 2, (scaled.rows - side) / 2, side, side);
   return scaled(centre).clone();
 }
 
 cv::Mat Heatmap(const cv::Mat& values) {
-  cv::Mat finite = values.clone();
+  cv::Mat finite;
+  values.convertTo(finite, CV_32F);  // patchNaNs takes single precision only
   cv::patchNaNs(finite, 0.0);
   cv::Mat normalised;
   cv::normalize(finite, normalised, 0, 255, cv::NORM_MINMAX, CV_8U);
@@ -144,9 +146,8 @@ void AddSurfaceCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   command->add_option("--max-steps", args->max_steps, "Descent step limit per start")
       ->capture_default_str();
   AddOutputOptions(command, output);
-  command->callback([args, run] {
-    *run = [args](ReportWriter& report) { return RunSurface(*args, report); };
-  });
+  command->callback(
+      [args, run] { *run = [args](ReportWriter& report) { return RunSurface(*args, report); }; });
 }
 
 }  // namespace kapfix::analyze

@@ -15,8 +15,7 @@ namespace {
 struct SwingCommandArgs {
   SwingArgs swing;
   std::string strategy = "h23";
-  int slice = 5;
-  int slices = 9;
+  SliceArgs where;
 };
 
 nlohmann::json RunSwing(const SwingCommandArgs& args, ReportWriter& report) {
@@ -26,7 +25,7 @@ nlohmann::json RunSwing(const SwingCommandArgs& args, ReportWriter& report) {
   options.search = MakeSearchOptions(args.swing);
   const SwingRecording recording = RecordSwingWithProgress(args.swing);
   const cv::Size frame = recording.planes.front().size();
-  const cv::Rect patch = SlicePatch(frame, args.slices, args.slice, args.swing.patch);
+  const cv::Rect patch = SlicePatch(frame, args.where.slices, args.where.slice, args.swing.patch);
 
   ProgressReporter progress("swing " + args.strategy);
   const SwingEvaluation e =
@@ -44,20 +43,19 @@ nlohmann::json RunSwing(const SwingCommandArgs& args, ReportWriter& report) {
   }
   report.WriteCsv("swing.csv", {"frame", "true_px", "measured_px", "error_px", "search_us"},
                   {frame_index, truth, measured, e.errors_px, e.search_us});
-  report.WritePng("swing.png",
-                  RenderLinePlot("open-loop swing, " + args.strategy + ", slice " +
-                                     std::to_string(args.slice),
-                                 "frame", "displacement [px]",
-                                 {{"true", truth, {40, 160, 40}},
-                                  {"measured", measured, {200, 80, 20}}}));
+  report.WritePng(
+      "swing.png",
+      RenderLinePlot("open-loop swing, " + args.strategy + ", slice " + std::to_string(args.where.slice),
+                     "frame", "displacement [px]",
+                     {{"true", truth, {40, 160, 40}}, {"measured", measured, {200, 80, 20}}}));
   report.WritePng("swing_error.png", RenderLinePlot("error (measured - true)", "frame",
                                                     "error [px]", {{"error", e.errors_px}}));
   return {
       {"image", args.swing.image},
       {"strategy", args.strategy},
       {"sampling", ToString(options.sampling)},
-      {"slice", args.slice},
-      {"slices", args.slices},
+      {"slice", args.where.slice},
+      {"slices", args.where.slices},
       {"patch", {patch.x, patch.y, patch.width, patch.height}},
       {"frames", static_cast<int>(recording.planes.size())},
       {"scene_upscale", recording.upscale_factor},
@@ -80,15 +78,9 @@ void AddSwingCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   AddOutputOptions(command, output);
   command->add_option("--strategy", args->strategy, "all, h23, h21, h19, h17, h15 or pyr")
       ->capture_default_str();
-  command->add_option("--slice", args->slice, "Slice holding the patch (1 = top)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 99));
-  command->add_option("--slices", args->slices, "Number of slices")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 99));
-  command->callback([args, run] {
-    *run = [args](ReportWriter& report) { return RunSwing(*args, report); };
-  });
+  AddSliceOptions(command, &args->where);
+  command->callback(
+      [args, run] { *run = [args](ReportWriter& report) { return RunSwing(*args, report); }; });
 }
 
 }  // namespace kapfix::analyze

@@ -36,10 +36,21 @@ void AddSwingOptions(CLI::App* command, SwingArgs* args) {
   command->add_flag("--no-subpixel", args->no_subpixel, "Integer shifts only (as the thesis)");
 }
 
+void AddSliceOptions(CLI::App* command, SliceArgs* args) {
+  command->add_option("--slice", args->slice, "Slice holding the patch (1 = top)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 99));
+  command->add_option("--slices", args->slices, "Number of slices")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 99));
+}
+
 cv::Mat LoadScene(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
+  if (!std::filesystem::exists(path))
+    throw std::runtime_error("cannot read '" + path + "': no such file");
   cv::Mat scene = cv::imread(path, cv::IMREAD_COLOR);
-  if (scene.empty()) throw std::runtime_error("cannot read '" + path + "': not an image OpenCV can decode");
+  if (scene.empty())
+    throw std::runtime_error("cannot read '" + path + "': not an image OpenCV can decode");
   return scene;
 }
 
@@ -50,7 +61,8 @@ SwingOptions MakeSwingOptions(const SwingArgs& args) {
   char tail = 0;
   if (std::sscanf(args.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16 ||
       w > 8000 || h > 8000) {
-    throw std::invalid_argument("--size: expected WxH between 16 and 8000, got '" + args.size + "'");
+    throw std::invalid_argument("--size: expected WxH between 16 and 8000, got '" + args.size +
+                                "'");
   }
   options.camera.frame_size = {w, h};
   options.camera.seed = args.seed;
@@ -66,7 +78,8 @@ SwingOptions MakeSwingOptions(const SwingArgs& args) {
 
 ColorChannel MakeColorChannel(const SwingArgs& args) {
   const auto channel = ParseColorChannel(args.channel);
-  if (!channel) throw std::invalid_argument("--channel: expected green or rgb, got '" + args.channel + "'");
+  if (!channel)
+    throw std::invalid_argument("--channel: expected green or rgb, got '" + args.channel + "'");
   return *channel;
 }
 

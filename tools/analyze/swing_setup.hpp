@@ -20,14 +20,21 @@ struct SwingArgs {
   std::string channel = "green";
   std::string sampling = "random:0.1";
   std::string axis = "x";
-  int patch = 100;               // [px]
+  int patch = 100;  // [px]
   bool gusts = false;
-  double jitter_px = 2.0;         // σ of the pendulum's Y jitter [px] (SPEC §3)
-  double noise = 3.0;             // σ of the sensor noise [grey levels]
+  double jitter_px = 2.0;  // σ of the pendulum's Y jitter [px] (SPEC §3)
+  double noise = 3.0;      // σ of the sensor noise [grey levels]
   bool no_subpixel = false;
 };
 
 void AddSwingOptions(CLI::App* command, SwingArgs* args);
+
+// Where the patch sits: slice `slice` (1 = top) of `slices` horizontal bands.
+struct SliceArgs {
+  int slice = 5;
+  int slices = 9;
+};
+void AddSliceOptions(CLI::App* command, SliceArgs* args);
 
 // Reads the scene photo; throws std::runtime_error naming the file when it cannot.
 cv::Mat LoadScene(const std::string& path);

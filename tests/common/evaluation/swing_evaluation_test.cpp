@@ -57,8 +57,7 @@ TEST(SwingEvaluationTest, WrongTruthCountsAsGrossFailure) {
 TEST(SwingEvaluationTest, RefusesMismatchedTruth) {
   KnownSwing swing = MakeKnownSwing({0, 10});
   swing.truth.pop_back();
-  EXPECT_THROW(EvaluateSwing(swing.planes, swing.truth, {100, 100, 100, 100}, *Strategy("all"),
-                             {}),
+  EXPECT_THROW(EvaluateSwing(swing.planes, swing.truth, {100, 100, 100, 100}, *Strategy("all"), {}),
                std::invalid_argument);
 }
 

@@ -13,8 +13,9 @@ TEST(PatchLayoutTest, CentralIsOneCentredSquare) {
 
 TEST(PatchLayoutTest, IndividualsAreTheThesisFourPatchesOn300) {
   const auto rects = MakePatchLayout(PatchLayout::kIndividuals, {300, 300}, 100);
-  EXPECT_EQ(rects, (std::vector<cv::Rect>{{50, 50, 50, 50}, {200, 50, 50, 50},
-                                          {50, 200, 50, 50}, {200, 200, 50, 50}}));
+  EXPECT_EQ(rects,
+            (std::vector<cv::Rect>{
+                {50, 50, 50, 50}, {200, 50, 50, 50}, {50, 200, 50, 50}, {200, 200, 50, 50}}));
 }
 
 TEST(PatchLayoutTest, MergeAddsACentrePatchTo40PixelCorners) {

@@ -17,10 +17,9 @@ const HierarchicalPreset& Preset(const std::string& name) {
 using Levels = std::array<std::vector<int>, 3>;
 
 TEST(HierarchicalPresetTest, H23MatchesThesisTable45) {
-  EXPECT_EQ(Preset("h23").levels,
-            (Levels{{{-100, -80, -60, -40, -20, 0, 20, 40, 60, 80, 99},
-                     {-15, -10, -5, 0, 5, 10, 15},
-                     {-4, -2, 0, 2, 4}}}));
+  EXPECT_EQ(Preset("h23").levels, (Levels{{{-100, -80, -60, -40, -20, 0, 20, 40, 60, 80, 99},
+                                           {-15, -10, -5, 0, 5, 10, 15},
+                                           {-4, -2, 0, 2, 4}}}));
   EXPECT_EQ(Preset("h23").visits(), 23);
 }
 
@@ -39,16 +38,14 @@ TEST(HierarchicalPresetTest, H19MatchesThesisTable45) {
 }
 
 TEST(HierarchicalPresetTest, H17MatchesThesisTable45) {
-  EXPECT_EQ(Preset("h17").levels, (Levels{{{-75, -50, -25, 0, 25, 50, 74},
-                                           {-15, -8, -1, 6, 13},
-                                           {-7, -4, -1, 2, 5}}}));
+  EXPECT_EQ(Preset("h17").levels,
+            (Levels{{{-75, -50, -25, 0, 25, 50, 74}, {-15, -8, -1, 6, 13}, {-7, -4, -1, 2, 5}}}));
   EXPECT_EQ(Preset("h17").visits(), 17);
 }
 
 TEST(HierarchicalPresetTest, H15MatchesThesisTable45WithItsOneSidedLevelTwo) {
-  EXPECT_EQ(Preset("h15").levels, (Levels{{{-75, -45, -15, 15, 45, 74},
-                                           {-30, -20, -10, 0},
-                                           {-6, -3, 0, 3, 6}}}));
+  EXPECT_EQ(Preset("h15").levels,
+            (Levels{{{-75, -45, -15, 15, 45, 74}, {-30, -20, -10, 0}, {-6, -3, 0, 3, 6}}}));
   EXPECT_EQ(Preset("h15").visits(), 15);
 }
 

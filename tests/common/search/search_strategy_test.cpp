@@ -39,8 +39,8 @@ TEST(SearchStrategyTest, EveryStrategyFindsModerateShiftsOnARealPhoto) {
   const cv::Mat ref = plane(cv::Rect(100, 100, 300, 300)).clone();
   for (const std::string& name : SearchStrategyNames()) {
     if (name == "h15" || name == "h17") continue;  // their tables skip shifts; tested apart
-    const ReferencePatch patch(ref, SampleSet({cv::Rect(100, 100, 100, 100)},
-                                              {SamplingKind::kRandom, 0.1, 1}));
+    const ReferencePatch patch(
+        ref, SampleSet({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kRandom, 0.1, 1}));
     for (const int dx : {-45, -12, 0, 6, 58}) {
       // Content moves by dx when the window over the photo moves by −dx.
       const cv::Mat cur = plane(cv::Rect(100 - dx, 100, 300, 300)).clone();

@@ -34,8 +34,7 @@ TEST(MatchConfidenceTest, ASingleBasinIsComparedWithItsHighestPoint) {
 }
 
 TEST(MatchConfidenceTest, AShallowerRivalGivesPartialConfidence) {
-  const std::map<int, std::int64_t> curve{{-6, 90}, {-5, 40}, {-4, 90}, {0, 90},
-                                          {1, 20},  {2, 90}};
+  const std::map<int, std::int64_t> curve{{-6, 90}, {-5, 40}, {-4, 90}, {0, 90}, {1, 20}, {2, 90}};
   EXPECT_DOUBLE_EQ(MatchConfidence(curve), 0.5);
 }
 
