@@ -48,6 +48,7 @@ class ScoreMap {
 struct Crop {
   cv::Point origin;              // [px] top-left of the crop in frame coordinates
   std::vector<cv::Mat> pyramid;  // level 0 = full resolution
+  cv::Mat blurred;               // scratch for the band-pass
 };
 
 bool MakeCrop(const cv::Mat& plane, cv::Rect want, int levels, Crop* crop) {
@@ -60,21 +61,19 @@ bool MakeCrop(const cv::Mat& plane, cv::Rect want, int levels, Crop* crop) {
   if (w < step || h < step) return false;
   crop->origin = {x0, y0};
   // A view, not a copy: pyrDown reads the ROI in place.
-  crop->pyramid.assign(1, plane(cv::Rect(x0, y0, w, h)));
-  for (int l = 1; l <= levels; ++l) {
-    cv::Mat down;
-    cv::pyrDown(crop->pyramid.back(), down);
-    crop->pyramid.push_back(down);
-  }
+  // Level buffers are reused from call to call when the crop keeps its size (the current
+  // frame's crop is thread-local): no allocation per search.
+  crop->pyramid.resize(static_cast<std::size_t>(levels) + 1);
+  crop->pyramid[0] = plane(cv::Rect(x0, y0, w, h));
+  for (int l = 1; l <= levels; ++l) cv::pyrDown(crop->pyramid[l - 1], crop->pyramid[l]);
   // Reduced levels are compared band-passed (the level minus its own blur, re-centred on mid
   // grey): smooth shading under a brightness drift otherwise looks like a shift along the
   // shading gradient to SSD, and pulls the coarse minimum away by several pixels.
   for (int l = 1; l <= levels; ++l) {
     cv::Mat& level = crop->pyramid[l];
-    cv::Mat blurred;
-    cv::GaussianBlur(level, blurred, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REPLICATE);
+    cv::GaussianBlur(level, crop->blurred, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REPLICATE);
     const double mid = level.depth() == CV_8U ? 128.0 : 32768.0;
-    cv::addWeighted(level, 1.0, blurred, -1.0, mid, level);  // saturating, one pass
+    cv::addWeighted(level, 1.0, crop->blurred, -1.0, mid, level);  // saturating, one pass
   }
   return true;
 }
@@ -207,7 +206,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
     return crop;
   });
   const Crop* ref_ptr = std::any_cast<Crop>(&ref_any);
-  Crop cur;
+  thread_local Crop cur;
   if (ref_ptr == nullptr || !MakeCrop(current, cur_want, levels, &cur)) return result;
   const Crop& ref = *ref_ptr;
 

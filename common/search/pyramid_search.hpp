@@ -17,7 +17,7 @@ namespace kapfix {
 // onto a repetitive texture's side valley as h23 does, and tolerates the small cross-axis
 // wobble that defeats an X-only search on fine texture.
 //
-// Cost for R = 100, cross_range = 4, a 100×100 patch, X axis: 51 × 3 coarse shifts of 625
+// Cost for R = 100, cross_range = 8, a 100×100 patch, X axis: 51 × 5 coarse shifts of 625
 // pixels, about 9 shifts of 2,500 at half resolution and about 9 of the sampled pixels at
 // full resolution. With SearchAxis::kBoth the coarse window is 51 × 51 (joint 2-D).
 class PyramidSearch final : public SearchStrategy {
