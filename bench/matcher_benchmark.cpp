@@ -111,7 +111,10 @@ int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int fra
     std::vector<Pooled> pooled(methods.size());
     std::printf("== %dx%d frames ==\n", size.width, size.height);
     for (const std::string& photo : photos) {
-      const cv::Mat scene = cv::imread(data_dir + '/' + photo, cv::IMREAD_COLOR);
+      std::string path = data_dir;
+      path += '/';
+      path += photo;
+      const cv::Mat scene = cv::imread(path, cv::IMREAD_COLOR);
       if (scene.empty()) {
         std::fprintf(stderr, "cannot read %s/%s (install opencv-doc: deploy/setup-debian.sh)\n",
                      data_dir.c_str(), photo.c_str());

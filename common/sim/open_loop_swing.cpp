@@ -37,10 +37,8 @@ SwingOptions SwingOptions::ForFrameSize(cv::Size frame_size) {
   return options;
 }
 
-OpenLoopSwing::OpenLoopSwing(cv::Mat scene_bgr, SwingOptions options)
-    : options_(Validated(options)),
-      camera_(std::move(scene_bgr), options_.camera),
-      motion_(options_.motion) {}
+OpenLoopSwing::OpenLoopSwing(const cv::Mat& scene_bgr, SwingOptions options)
+    : options_(Validated(options)), camera_(scene_bgr, options_.camera), motion_(options_.motion) {}
 
 cv::Mat OpenLoopSwing::Frame(int t) const {
   if (t < 0 || t >= options_.frames) {

@@ -31,7 +31,7 @@ struct SwingOptions {
 class OpenLoopSwing {
  public:
   // Throws std::invalid_argument for an empty scene or options that are not IsValid.
-  OpenLoopSwing(cv::Mat scene_bgr, SwingOptions options);
+  OpenLoopSwing(const cv::Mat& scene_bgr, SwingOptions options);
 
   int frames() const { return options_.frames; }
   // BGR frame t, 0 ≤ t < frames() (std::out_of_range otherwise).
