@@ -1,0 +1,323 @@
+// The only translation unit that includes Aravis and glib (SPEC §8: glib's `signals` member
+// clashes with Qt's keyword, so these headers must not leak into any header).
+#include "agent/capture/aravis_frame_source.hpp"
+
+#include <arv.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace kapfix::agent {
+namespace {
+
+std::int64_t NowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Takes a GError's message and frees it; "" when there was no error.
+std::string TakeError(GError** error) {
+  if (*error == nullptr) return "";
+  std::string message = (*error)->message ? (*error)->message : "unknown Aravis error";
+  g_clear_error(error);
+  return message;
+}
+
+// GenICam Bayer names give the colour of the top-left pixel pair (RG: R at (0,0), G at
+// (1,0)); OpenCV's constants name the pair at (1,1), one row and column further.
+bool BayerCode(ArvPixelFormat format, int* code) {
+  if (format == ARV_PIXEL_FORMAT_BAYER_RG_8)
+    *code = cv::COLOR_BayerBG2BGR;
+  else if (format == ARV_PIXEL_FORMAT_BAYER_GR_8)
+    *code = cv::COLOR_BayerGB2BGR;
+  else if (format == ARV_PIXEL_FORMAT_BAYER_GB_8)
+    *code = cv::COLOR_BayerGR2BGR;
+  else if (format == ARV_PIXEL_FORMAT_BAYER_BG_8)
+    *code = cv::COLOR_BayerRG2BGR;
+  else
+    return false;
+  return true;
+}
+
+}  // namespace
+
+struct AravisFrameSource::Impl {
+  AravisFrameSourceOptions options;
+  ArvCamera* camera = nullptr;
+  ArvStream* stream = nullptr;
+  std::string id;  // the device id once open
+  std::uint64_t next_index = 0;
+
+  std::string Name() const {
+    const std::string& shown = id.empty() ? options.camera_id : id;
+    return "Aravis camera '" + (shown.empty() ? std::string("(first)") : shown) + "'";
+  }
+  bool Fail(const std::string& reason, std::string* error) const {
+    if (error) *error = Name() + ": " + reason;
+    return false;
+  }
+  void Close() {
+    if (camera != nullptr && stream != nullptr) arv_camera_stop_acquisition(camera, nullptr);
+    if (stream != nullptr) g_object_unref(stream);
+    if (camera != nullptr) g_object_unref(camera);
+    stream = nullptr;
+    camera = nullptr;
+  }
+  // Converts one complete buffer; false + reason for a pixel format we do not read.
+  bool Convert(ArvBuffer* buffer, cv::Mat* bgr, std::string* reason) const {
+    const int width = arv_buffer_get_image_width(buffer);
+    const int height = arv_buffer_get_image_height(buffer);
+    const ArvPixelFormat format = arv_buffer_get_image_pixel_format(buffer);
+    std::size_t size = 0;
+    const void* data = arv_buffer_get_image_data(buffer, &size);
+    const int channels =
+        format == ARV_PIXEL_FORMAT_RGB_8_PACKED || format == ARV_PIXEL_FORMAT_BGR_8_PACKED ? 3 : 1;
+    if (data == nullptr || width <= 0 || height <= 0 ||
+        size < static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+      *reason = "frame shorter than its size";
+      return false;
+    }
+    // A header over Aravis's buffer; the conversions below write a new Mat, so the buffer can
+    // go back to the stream right after.
+    const cv::Mat raw(height, width, channels == 3 ? CV_8UC3 : CV_8UC1, const_cast<void*>(data));
+    int bayer = 0;
+    if (format == ARV_PIXEL_FORMAT_MONO_8) {
+      cv::cvtColor(raw, *bgr, cv::COLOR_GRAY2BGR);
+    } else if (BayerCode(format, &bayer)) {
+      cv::cvtColor(raw, *bgr, bayer);
+    } else if (format == ARV_PIXEL_FORMAT_RGB_8_PACKED) {
+      cv::cvtColor(raw, *bgr, cv::COLOR_RGB2BGR);
+    } else if (format == ARV_PIXEL_FORMAT_BGR_8_PACKED) {
+      *bgr = raw.clone();
+    } else {
+      const char* name = arv_camera_get_pixel_format_as_string(camera, nullptr);
+      *reason = fmt::format(
+          "unsupported pixel format 0x{:08x} ({}); set the format to Mono8, "
+          "BayerRG8, BayerGR8, BayerGB8, BayerBG8, RGB8 or BGR8",
+          format, name ? name : "?");
+      return false;
+    }
+    return true;
+  }
+};
+
+AravisFrameSource::AravisFrameSource(AravisFrameSourceOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->options = std::move(options);
+}
+
+AravisFrameSource::~AravisFrameSource() { impl_->Close(); }
+
+bool AravisFrameSource::Available() { return true; }
+
+bool AravisFrameSource::Open(std::string* error) {
+  Impl& d = *impl_;
+  d.Close();
+  d.id.clear();
+  d.next_index = 0;
+  std::string reason;
+  if (!d.options.IsValid(&reason)) return d.Fail(reason, error);
+  if (d.options.enable_fake_camera) arv_enable_interface("Fake");
+
+  arv_update_device_list();
+  if (arv_get_n_devices() == 0) {
+    return d.Fail(
+        "no GenICam camera found (USB3 Vision or GigE Vision; check the cable, udev "
+        "permissions and `arv-tool-0.8`)",
+        error);
+  }
+  GError* gerror = nullptr;
+  d.camera =
+      arv_camera_new(d.options.camera_id.empty() ? nullptr : d.options.camera_id.c_str(), &gerror);
+  if (d.camera == nullptr) {
+    reason = TakeError(&gerror);
+    std::string found;
+    for (unsigned i = 0; i < arv_get_n_devices() && i < 8; ++i) {
+      found += (i ? ", " : "") + std::string(arv_get_device_id(i));
+    }
+    return d.Fail("cannot open (" + reason + "); cameras found: " + found, error);
+  }
+  // arv_camera_new(nullptr) opens the first device of the list.
+  if (d.options.camera_id.empty()) {
+    const char* first = arv_get_device_id(0);
+    d.id = first ? first : "";
+  } else {
+    d.id = d.options.camera_id;
+  }
+
+  // Each setting is applied in the order GenICam cameras expect: format and region first
+  // (they change the payload size), then the frame rate they allow.
+  if (!d.options.pixel_format.empty()) {
+    arv_camera_set_pixel_format_from_string(d.camera, d.options.pixel_format.c_str(), &gerror);
+    if (gerror) {
+      reason = TakeError(&gerror);
+      d.Close();
+      return d.Fail("cannot set pixel format " + d.options.pixel_format + " (" + reason + ")",
+                    error);
+    }
+  }
+  if (d.options.width > 0) {
+    arv_camera_set_region(d.camera, 0, 0, d.options.width, d.options.height, &gerror);
+    if (gerror) {
+      reason = TakeError(&gerror);
+      d.Close();
+      return d.Fail("cannot set region " + std::to_string(d.options.width) + "x" +
+                        std::to_string(d.options.height) + " (" + reason + ")",
+                    error);
+    }
+  }
+  if (d.options.fps > 0) {
+    arv_camera_set_frame_rate(d.camera, d.options.fps, &gerror);
+    if (gerror) {
+      reason = TakeError(&gerror);
+      d.Close();
+      return d.Fail(
+          "cannot set frame rate " + fmt::format("{:g}", d.options.fps) + " (" + reason + ")",
+          error);
+    }
+  }
+  if (arv_camera_is_gv_device(d.camera)) {
+    arv_camera_gv_auto_packet_size(d.camera, &gerror);  // best effort: jumbo frames if the
+    TakeError(&gerror);                                 // network allows them
+  }
+  d.stream = arv_camera_create_stream(d.camera, nullptr, nullptr, &gerror);
+  if (d.stream == nullptr) {
+    reason = TakeError(&gerror);
+    d.Close();
+    return d.Fail("cannot create a stream (" + reason + ")", error);
+  }
+  const guint payload = arv_camera_get_payload(d.camera, &gerror);
+  if (gerror || payload == 0) {
+    reason = TakeError(&gerror);
+    d.Close();
+    return d.Fail("cannot read the payload size (" + reason + ")", error);
+  }
+  for (int i = 0; i < d.options.buffers; ++i) {
+    arv_stream_push_buffer(d.stream, arv_buffer_new(payload, nullptr));
+  }
+  arv_camera_set_acquisition_mode(d.camera, ARV_ACQUISITION_MODE_CONTINUOUS, &gerror);
+  TakeError(&gerror);  // some cameras fix the mode; continuous is their default anyway
+  arv_camera_start_acquisition(d.camera, &gerror);
+  if (gerror) {
+    reason = TakeError(&gerror);
+    d.Close();
+    return d.Fail("cannot start acquisition (" + reason + ")", error);
+  }
+  spdlog::info("camera: {} open", Describe());
+  return true;
+}
+
+bool AravisFrameSource::Grab(CapturedFrame* frame, std::string* error) {
+  Impl& d = *impl_;
+  if (d.stream == nullptr) return d.Fail("not open", error);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(d.options.grab_timeout_ms);
+  int incomplete = 0;
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    ArvBuffer* buffer = arv_stream_timeout_pop_buffer(d.stream, static_cast<guint64>(left.count()));
+    if (buffer == nullptr) break;
+    if (arv_buffer_get_status(buffer) != ARV_BUFFER_STATUS_SUCCESS) {
+      ++incomplete;
+      arv_stream_push_buffer(d.stream, buffer);
+      continue;
+    }
+    const std::int64_t now = NowUs();
+    std::string reason;
+    const bool converted = d.Convert(buffer, &frame->image, &reason);
+    arv_stream_push_buffer(d.stream, buffer);
+    if (!converted) return d.Fail(reason, error);
+    frame->capture_time_us = now;
+    frame->index = d.next_index++;
+    return true;
+  }
+  return d.Fail("lost (no complete frame within " + std::to_string(d.options.grab_timeout_ms) +
+                    " ms, " + std::to_string(incomplete) + " incomplete)",
+                error);
+}
+
+bool AravisFrameSource::SetGain(double gain_db, std::string* error) {
+  Impl& d = *impl_;
+  if (d.camera == nullptr) return d.Fail("not open", error);
+  if (!std::isfinite(gain_db)) return d.Fail("gain is not finite", error);
+  GError* gerror = nullptr;
+  if (!arv_camera_is_gain_available(d.camera, &gerror)) {
+    const std::string reason = TakeError(&gerror);
+    return d.Fail("has no Gain feature" + (reason.empty() ? "" : " (" + reason + ")"), error);
+  }
+  if (arv_camera_is_gain_auto_available(d.camera, nullptr)) {
+    arv_camera_set_gain_auto(d.camera, ARV_AUTO_OFF, &gerror);
+    TakeError(&gerror);  // a camera without GainAuto is already manual
+  }
+  double low = 0;
+  double high = 0;
+  arv_camera_get_gain_bounds(d.camera, &low, &high, &gerror);
+  if (!gerror && (gain_db < low || gain_db > high)) {
+    return d.Fail(
+        fmt::format("gain {:g} dB is outside its range [{:g}, {:g}] dB", gain_db, low, high),
+        error);
+  }
+  TakeError(&gerror);
+  arv_camera_set_gain(d.camera, gain_db, &gerror);
+  if (gerror) {
+    const std::string reason = TakeError(&gerror);
+    return d.Fail(fmt::format("cannot set gain {:g} dB ({})", gain_db, reason), error);
+  }
+  return true;
+}
+
+bool AravisFrameSource::SetExposure(double exposure_us, std::string* error) {
+  Impl& d = *impl_;
+  if (d.camera == nullptr) return d.Fail("not open", error);
+  if (!std::isfinite(exposure_us) || exposure_us <= 0) {
+    return d.Fail("exposure must be > 0 µs, got " + std::to_string(exposure_us), error);
+  }
+  GError* gerror = nullptr;
+  if (!arv_camera_is_exposure_time_available(d.camera, &gerror)) {
+    const std::string reason = TakeError(&gerror);
+    return d.Fail("has no ExposureTime feature" + (reason.empty() ? "" : " (" + reason + ")"),
+                  error);
+  }
+  if (arv_camera_is_exposure_auto_available(d.camera, nullptr)) {
+    arv_camera_set_exposure_time_auto(d.camera, ARV_AUTO_OFF, &gerror);
+    TakeError(&gerror);
+  }
+  double low = 0;
+  double high = 0;
+  arv_camera_get_exposure_time_bounds(d.camera, &low, &high, &gerror);
+  if (!gerror && (exposure_us < low || exposure_us > high)) {
+    return d.Fail(fmt::format("exposure {:g} µs is outside its range [{:g}, {:g}] µs", exposure_us,
+                              low, high),
+                  error);
+  }
+  TakeError(&gerror);
+  arv_camera_set_exposure_time(d.camera, exposure_us, &gerror);
+  if (gerror) {
+    const std::string reason = TakeError(&gerror);
+    return d.Fail(fmt::format("cannot set exposure {:g} µs ({})", exposure_us, reason), error);
+  }
+  return true;
+}
+
+std::string AravisFrameSource::Describe() const {
+  const Impl& d = *impl_;
+  std::string text =
+      "aravis " + (d.id.empty() ? (d.options.camera_id.empty() ? std::string("(first camera)")
+                                                               : d.options.camera_id)
+                                : d.id);
+  if (d.camera != nullptr) {
+    const char* vendor = arv_camera_get_vendor_name(d.camera, nullptr);
+    const char* model = arv_camera_get_model_name(d.camera, nullptr);
+    const char* serial = arv_camera_get_device_serial_number(d.camera, nullptr);
+    text += fmt::format(" ({} {}, serial {})", vendor ? vendor : "?", model ? model : "?",
+                        serial ? serial : "?");
+  }
+  return text;
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,156 @@
+#include "agent/capture/v4l2_frame_source.hpp"
+
+#include <spdlog/spdlog.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <opencv2/imgproc.hpp>
+
+namespace kapfix::agent {
+namespace {
+
+bool IsIndex(const std::string& text) {
+  return !text.empty() && text.size() <= 3 &&
+         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+std::int64_t NowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// V4L2_CID_EXPOSURE_ABSOLUTE counts in units of 100 µs.
+constexpr double kV4l2ExposureUnitUs = 100;
+// V4L2_EXPOSURE_MANUAL in enum v4l2_exposure_auto_type.
+constexpr double kV4l2ExposureManual = 1;
+
+}  // namespace
+
+bool V4l2FrameSourceOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (device.empty()) return fail("V4L2 device is empty");
+  if (width < 16 || width > 8192 || height < 16 || height > 8192) {
+    return fail("V4L2 frame size must be 16…8192 px per side, got " + std::to_string(width) + "x" +
+                std::to_string(height));
+  }
+  if (!std::isfinite(fps) || fps <= 0 || fps > 1000) {
+    return fail("V4L2 fps must be in (0, 1000], got " + std::to_string(fps));
+  }
+  if (!fourcc.empty() && fourcc.size() != 4) {
+    return fail("V4L2 fourcc must be 4 characters (e.g. MJPG), got '" + fourcc + "'");
+  }
+  return true;
+}
+
+V4l2FrameSource::V4l2FrameSource(V4l2FrameSourceOptions options) : options_(std::move(options)) {}
+
+std::string V4l2FrameSource::DevicePath() const {
+  return IsIndex(options_.device) ? "/dev/video" + options_.device : options_.device;
+}
+
+bool V4l2FrameSource::Fail(const std::string& reason, std::string* error) const {
+  if (error) *error = "V4L2 camera " + DevicePath() + ": " + reason;
+  return false;
+}
+
+bool V4l2FrameSource::Open(std::string* error) {
+  capture_.release();
+  next_index_ = 0;
+  std::string reason;
+  if (!options_.IsValid(&reason)) return Fail(reason, error);
+  const std::string path = DevicePath();
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) {
+    const int code = errno;
+    if (code == ENOENT) return Fail("no such device (camera unplugged?)", error);
+    return Fail("cannot inspect (" + std::string(std::strerror(code)) + ")", error);
+  }
+  if (!S_ISCHR(info.st_mode)) return Fail("not a video device (not a character device)", error);
+  if (::access(path.c_str(), R_OK | W_OK) != 0) {
+    return Fail("permission denied; is the agent's user in group video?", error);
+  }
+  if (!capture_.open(path, cv::CAP_V4L2) || !capture_.isOpened()) {
+    capture_.release();
+    return Fail("OpenCV's V4L2 backend cannot open it (not a capture device, or busy?)", error);
+  }
+  if (!options_.fourcc.empty()) {
+    const std::string& f = options_.fourcc;
+    capture_.set(cv::CAP_PROP_FOURCC, cv::VideoWriter::fourcc(f[0], f[1], f[2], f[3]));
+  }
+  capture_.set(cv::CAP_PROP_FRAME_WIDTH, options_.width);
+  capture_.set(cv::CAP_PROP_FRAME_HEIGHT, options_.height);
+  capture_.set(cv::CAP_PROP_FPS, options_.fps);
+  capture_.set(cv::CAP_PROP_BUFFERSIZE, 1);
+  const double width = capture_.get(cv::CAP_PROP_FRAME_WIDTH);
+  const double height = capture_.get(cv::CAP_PROP_FRAME_HEIGHT);
+  const double fps = capture_.get(cv::CAP_PROP_FPS);
+  if (width != options_.width || height != options_.height || std::abs(fps - options_.fps) > 0.5) {
+    spdlog::warn("V4L2 camera {}: asked for {}x{} @ {:g} fps, the driver gives {:g}x{:g} @ {:g}",
+                 path, options_.width, options_.height, options_.fps, width, height, fps);
+  }
+  spdlog::info("camera: {} open", Describe());
+  return true;
+}
+
+bool V4l2FrameSource::Grab(CapturedFrame* frame, std::string* error) {
+  if (!capture_.isOpened()) return Fail("not open", error);
+  cv::Mat image;
+  if (!capture_.read(image) || image.empty()) {
+    return Fail("lost (no frame; unplugged or stalled)", error);
+  }
+  const std::int64_t now = NowUs();
+  if (image.type() == CV_8UC1) {
+    cv::cvtColor(image, frame->image, cv::COLOR_GRAY2BGR);
+  } else if (image.type() == CV_8UC3) {
+    frame->image = image;  // OpenCV copies the driver buffer into `image`: ours to keep
+  } else {
+    return Fail("unsupported frame type " + std::to_string(image.type()) + " (want 8-bit BGR)",
+                error);
+  }
+  frame->capture_time_us = now;
+  frame->index = next_index_++;
+  return true;
+}
+
+bool V4l2FrameSource::SetGain(double gain_db, std::string* error) {
+  if (!capture_.isOpened()) return Fail("not open", error);
+  if (!std::isfinite(gain_db)) return Fail("gain is not finite", error);
+  if (!capture_.set(cv::CAP_PROP_GAIN, gain_db)) {
+    return Fail("the driver refused gain " + std::to_string(gain_db) +
+                    " (no gain control, or out of its range)",
+                error);
+  }
+  return true;
+}
+
+bool V4l2FrameSource::SetExposure(double exposure_us, std::string* error) {
+  if (!capture_.isOpened()) return Fail("not open", error);
+  if (!std::isfinite(exposure_us) || exposure_us <= 0) {
+    return Fail("exposure must be > 0 µs, got " + std::to_string(exposure_us), error);
+  }
+  if (!capture_.set(cv::CAP_PROP_AUTO_EXPOSURE, kV4l2ExposureManual)) {
+    return Fail("the driver refused manual exposure", error);
+  }
+  const double units = std::max(1.0, std::round(exposure_us / kV4l2ExposureUnitUs));
+  if (!capture_.set(cv::CAP_PROP_EXPOSURE, units)) {
+    return Fail("the driver refused exposure " + std::to_string(exposure_us) + " µs", error);
+  }
+  return true;
+}
+
+std::string V4l2FrameSource::Describe() const {
+  return "v4l2 " + DevicePath() + " " + std::to_string(options_.width) + "x" +
+         std::to_string(options_.height) + " @ " + fmt::format("{:g}", options_.fps) + " fps";
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <opencv2/videoio.hpp>
+#include <string>
+
+#include "agent/capture/frame_source.hpp"
+
+namespace kapfix::agent {
+
+struct V4l2FrameSourceOptions {
+  std::string device = "/dev/video0";  // a path, or an index ("0" means /dev/video0)
+  int width = 640;                     // [px] requested; the driver may pick the nearest
+  int height = 480;                    // [px]
+  double fps = 30;                     // [frames/s] requested
+  std::string fourcc;                  // "" = driver default, else e.g. "MJPG" or "YUYV"
+
+  bool IsValid(std::string* error) const;
+};
+
+// A V4L2/UVC camera through OpenCV's V4L2 backend (cv::CAP_V4L2).
+//
+// Open checks the device node itself first (missing, not a character device, no permission)
+// so that the reason is ours rather than an OpenCV warning, asks for size, fps and a one-frame
+// driver queue (a stale frame is worse than none for the control loop), and logs what the
+// driver granted where it differs.
+//
+// Units: OpenCV passes CAP_PROP_* values to V4L2 unchanged. SetExposure turns auto exposure off
+// (V4L2_EXPOSURE_MANUAL = 1) and writes V4L2_CID_EXPOSURE_ABSOLUTE, whose unit is 100 µs, so
+// the value is converted. SetGain writes V4L2_CID_GAIN, whose unit the driver defines (UVC
+// webcams: a 0…255 index, not dB); the value is passed as it is — read the camera's range
+// with `v4l2-ctl -d DEV --list-ctrls`.
+class V4l2FrameSource : public FrameSource {
+ public:
+  explicit V4l2FrameSource(V4l2FrameSourceOptions options);
+
+  bool Open(std::string* error) override;
+  bool Grab(CapturedFrame* frame, std::string* error) override;
+  bool SetGain(double gain_db, std::string* error) override;
+  bool SetExposure(double exposure_us, std::string* error) override;
+  std::string Describe() const override;
+
+  // "/dev/videoN" for an index, the path otherwise.
+  std::string DevicePath() const;
+
+ private:
+  bool Fail(const std::string& reason, std::string* error) const;
+
+  V4l2FrameSourceOptions options_;
+  cv::VideoCapture capture_;
+  std::uint64_t next_index_ = 0;
+};
+
+}  // namespace kapfix::agent

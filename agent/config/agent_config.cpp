@@ -1,0 +1,265 @@
+#include "agent/config/agent_config.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "agent/config/config_reader.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+// Wraps a ParseX(std::string_view) → optional<T> for ConfigReader::ReadParsed.
+template <typename T, typename Parse>
+auto Enum(Parse parse, const char* choices) {
+  return [parse, choices](const std::string& text, T* value, std::string* reason) {
+    const auto parsed = parse(text);
+    if (!parsed) {
+      *reason = "unknown value '" + text + "' (" + choices + ")";
+      return false;
+    }
+    *value = *parsed;
+    return true;
+  };
+}
+
+void ReadSimulation(ConfigReader& r, SimulationConfig* c) {
+  r.Read("scene", &c->scene);
+  r.ReadParsed<MotionKind>("motion", &c->motion, Enum<MotionKind>(ParseMotionKind, "kite or boat"));
+  r.Read("seed", &c->seed);
+  r.Read("gusts", &c->gusts);
+}
+
+void ReadCamera(ConfigReader& r, CameraConfig* c) {
+  r.ReadParsed<CameraBackend>("backend", &c->backend,
+                              Enum<CameraBackend>(ParseCameraBackend, "sim, v4l2 or aravis"));
+  r.Read("device", &c->device);
+  r.Read("width", &c->width);
+  r.Read("height", &c->height);
+  r.Read("fps", &c->fps);
+  r.Read("format", &c->format);
+  r.Read("gain_db", &c->gain_db);
+  r.Read("exposure_us", &c->exposure_us);
+}
+
+void ReadServoAxis(ConfigReader& r, ServoAxisConfig* c) {
+  r.Read("channel", &c->mapping.channel);
+  r.Read("center_us", &c->mapping.center_us);
+  r.Read("us_per_deg", &c->mapping.us_per_deg);
+  r.Read("min_us", &c->mapping.min_us);
+  r.Read("max_us", &c->mapping.max_us);
+  r.Read("min_deg", &c->limits.min_deg);
+  r.Read("max_deg", &c->limits.max_deg);
+  r.Read("max_rate_deg_per_s", &c->limits.max_rate_deg_per_s);
+  r.Read("park_deg", &c->limits.park_deg);
+}
+
+void ReadServo(ConfigReader& r, ServoConfig* c) {
+  r.ReadParsed<ServoBackend>("backend", &c->backend,
+                             Enum<ServoBackend>(ParseServoBackend, "sim, maestro or pca9685"));
+  r.Read("device", &c->device);
+  r.Read("baud", &c->baud);
+  r.ReadInteger("i2c_address", &c->i2c_address);
+  r.Read("pwm_hz", &c->pwm_hz);
+  r.Read("oscillator_hz", &c->oscillator_hz);
+  r.ReadObject("pan", [c](ConfigReader& axis) {
+    ReadServoAxis(axis, &c->pan);
+    return axis.ok();
+  });
+  r.ReadObject("tilt", [c](ConfigReader& axis) {
+    ReadServoAxis(axis, &c->tilt);
+    return axis.ok();
+  });
+}
+
+void ReadLens(ConfigReader& r, LensProfile* c) {
+  r.Read("name", &c->name);
+  r.Read("deg_per_px_pan", &c->deg_per_px_pan);
+  r.Read("deg_per_px_tilt", &c->deg_per_px_tilt);
+  r.Read("focal_mm", &c->focal_mm);
+  r.Read("pixel_pitch_um", &c->pixel_pitch_um);
+}
+
+void ReadSearch(ConfigReader& r, SearchConfig* c) {
+  r.Read("strategy", &c->strategy);
+  r.ReadParsed<SamplingOptions>("sampling", &c->sampling,
+                                [](const std::string& text, SamplingOptions* o, std::string* why) {
+                                  return ParseSamplingOptions(text, o, why);
+                                });
+  r.Read("patch_px", &c->patch_px);
+  r.Read("slices", &c->slices);
+  r.ReadParsed<SearchAxis>("axis", &c->axis, Enum<SearchAxis>(ParseSearchAxis, "x, y or both"));
+  r.Read("range_px", &c->range_px);
+  r.ReadParsed<ColorChannel>("channel", &c->channel,
+                             Enum<ColorChannel>(ParseColorChannel, "green or rgb"));
+  r.Read("subpixel", &c->subpixel);
+}
+
+void ReadController(ConfigReader& r, ControllerConfig* c) {
+  r.ReadParsed<ControllerKind>("kind", &c->kind,
+                               Enum<ControllerKind>(ParseControllerKind, "p, pid or predictive"));
+  r.Read("kp", &c->kp);
+  r.Read("ki", &c->ki);
+  r.Read("kd", &c->kd);
+  r.Read("dead_band_px", &c->dead_band_px);
+  r.Read("max_rate_deg_per_s", &c->max_rate_deg_per_s);
+}
+
+void ReadLink(ConfigReader& r, LinkConfig* c) {
+  r.Read("command", &c->command_address);
+  r.Read("stream", &c->stream_address);
+  r.Read("heartbeat_ms", &c->heartbeat_ms);
+  r.Read("curve_secret_key_file", &c->curve_secret_key_file);
+  r.Read("curve_authorized_keys_file", &c->curve_authorized_keys_file);
+}
+
+void ReadAgent(ConfigReader& r, AgentConfig* c) {
+  r.Read("agent_id", &c->agent_id);
+  r.ReadObject("simulation", [c](ConfigReader& s) {
+    ReadSimulation(s, &c->simulation);
+    return s.ok();
+  });
+  r.ReadObject("camera", [c](ConfigReader& s) {
+    ReadCamera(s, &c->camera);
+    return s.ok();
+  });
+  r.ReadObject("servo", [c](ConfigReader& s) {
+    ReadServo(s, &c->servo);
+    return s.ok();
+  });
+  // A "lenses" array replaces the default profile rather than adding to it.
+  if (r.Has("lenses")) c->lenses.clear();
+  r.ReadObjectArray("lenses", [c](ConfigReader& s, std::size_t /*index*/) {
+    ReadLens(s, &c->lenses.emplace_back());
+    return s.ok();
+  });
+  r.Read("lens", &c->lens);
+  r.ReadObject("search", [c](ConfigReader& s) {
+    ReadSearch(s, &c->search);
+    return s.ok();
+  });
+  r.ReadObject("controller", [c](ConfigReader& s) {
+    ReadController(s, &c->controller);
+    return s.ok();
+  });
+  r.ReadObject("link", [c](ConfigReader& s) {
+    ReadLink(s, &c->link);
+    return s.ok();
+  });
+  r.ReadObject("photos", [c](ConfigReader& s) {
+    s.Read("dir", &c->photos.dir);
+    s.Read("interval_s", &c->photos.interval_s);
+    return s.ok();
+  });
+  r.ReadObject("video", [c](ConfigReader& s) {
+    s.Read("fps", &c->video.fps);
+    s.Read("quality", &c->video.quality);
+    s.Read("scale", &c->video.scale);
+    return s.ok();
+  });
+  r.Read("watchdog_ms", &c->watchdog_ms);
+  r.Finish();
+}
+
+bool IsAgentId(const std::string& id) {
+  return !id.empty() && id.size() <= 64 && std::all_of(id.begin(), id.end(), [](unsigned char ch) {
+    return std::isalnum(ch) || ch == '.' || ch == '_' || ch == '-';
+  });
+}
+
+}  // namespace
+
+bool AgentConfig::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!IsAgentId(agent_id)) {
+    return fail("agent_id: must be 1…64 characters of A-Z a-z 0-9 . _ -, got '" + agent_id + "'");
+  }
+  if (!simulation.IsValid(error) || !camera.IsValid(error) || !servo.IsValid(error)) return false;
+  if (lenses.empty()) return fail("lenses: at least one lens profile is needed");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < lenses.size(); ++i) {
+    std::string reason;
+    if (!lenses[i].IsValid(&reason)) {
+      return fail("lenses[" + std::to_string(i) + "]: " + reason);
+    }
+    if (!names.insert(lenses[i].name).second) {
+      return fail("lenses[" + std::to_string(i) + "]: lens name '" + lenses[i].name +
+                  "' is used twice");
+    }
+  }
+  if (names.count(lens) == 0) return fail("lens: no lens profile named '" + lens + "'");
+  if (!search.IsValid(error) || !controller.IsValid(error) || !link.IsValid(error) ||
+      !photos.IsValid(error) || !video.IsValid(error)) {
+    return false;
+  }
+  if (search.patch_px > std::min(camera.width, camera.height)) {
+    return fail("search.patch_px: " + std::to_string(search.patch_px) +
+                " px does not fit in the camera's " + std::to_string(camera.width) + "x" +
+                std::to_string(camera.height) + " frame");
+  }
+  if (watchdog_ms < 20 || watchdog_ms > 60000) {
+    return fail("watchdog_ms: must be 20…60000 ms, got " + std::to_string(watchdog_ms));
+  }
+  return true;
+}
+
+const LensProfile& AgentConfig::active_lens() const {
+  for (const LensProfile& profile : lenses) {
+    if (profile.name == lens) return profile;
+  }
+  return lenses.front();
+}
+
+bool ParseAgentConfig(const std::string& json_text, AgentConfig* config, std::string* error) {
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: …".
+    std::string what = e.what();
+    const std::size_t tag_end = what.find("] ");
+    if (tag_end != std::string::npos) what = what.substr(tag_end + 2);
+    if (error) *error = "invalid JSON: " + what;
+    return false;
+  }
+  AgentConfig parsed;
+  ConfigReader reader(json, "");
+  if (reader.ok()) ReadAgent(reader, &parsed);
+  if (!reader.ok()) {
+    if (error) *error = reader.error();
+    return false;
+  }
+  if (!parsed.IsValid(error)) return false;
+  *config = std::move(parsed);
+  return true;
+}
+
+bool LoadAgentConfig(const std::string& path, AgentConfig* config, std::string* error) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    if (error) *error = path + ": cannot read (" + std::strerror(errno) + ")";
+    return false;
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) {
+    if (error) *error = path + ": read error";
+    return false;
+  }
+  std::string reason;
+  if (!ParseAgentConfig(text.str(), config, &reason)) {
+    if (error) *error = path + ": " + reason;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "agent/config/camera_config.hpp"
+#include "agent/config/controller_config.hpp"
+#include "agent/config/lens_profile.hpp"
+#include "agent/config/link_config.hpp"
+#include "agent/config/photo_config.hpp"
+#include "agent/config/search_config.hpp"
+#include "agent/config/servo_config.hpp"
+#include "agent/config/simulation_config.hpp"
+#include "agent/config/video_config.hpp"
+
+namespace kapfix::agent {
+
+// kapfix-agent's one configuration file (SPEC §4), JSON. Every key, its default and its unit:
+// resources/README.md; examples: resources/kite.json, resources/boat.json. A default-built
+// AgentConfig is valid and runs everything in simulation.
+struct AgentConfig {
+  std::string agent_id = "kapfix";  // names the agent in every message; [A-Za-z0-9._-]{1,64}
+  SimulationConfig simulation;
+  CameraConfig camera;
+  ServoConfig servo;
+  // Lens profiles, and the name of the one fitted; calibration is stored per profile.
+  std::vector<LensProfile> lenses = {
+      {.name = "default", .deg_per_px_pan = 0.1, .deg_per_px_tilt = 0.1}};
+  std::string lens = "default";
+  SearchConfig search;
+  ControllerConfig controller;
+  LinkConfig link;
+  PhotoConfig photos;
+  VideoConfig video;
+  // [ms] the servos are parked when the control loop has not run for this long.
+  int watchdog_ms = 500;
+
+  // Every section, unique lens names, `lens` among them, watchdog 20…60000 ms. The reason
+  // starts with the field's path ("servo.pan: …").
+  bool IsValid(std::string* error) const;
+
+  const LensProfile& active_lens() const;  // the profile named by `lens` (IsValid first)
+};
+
+// Parses a configuration from JSON text: keys not given keep their defaults; unknown keys,
+// wrong types and invalid values are errors naming the field ("camera.fps: …"), invalid JSON
+// an error with line and column. `config` is only written on success.
+bool ParseAgentConfig(const std::string& json_text, AgentConfig* config, std::string* error);
+
+// Reads and parses a configuration file; errors start with the file's path.
+bool LoadAgentConfig(const std::string& path, AgentConfig* config, std::string* error);
+
+}  // namespace kapfix::agent

@@ -1,0 +1,42 @@
+#include "agent/servo/maestro_protocol.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kapfix::agent::maestro {
+
+int QuarterMicroseconds(double pulse_us) {
+  if (std::isnan(pulse_us)) return 0;
+  const double quarters = std::clamp(std::round(pulse_us * 4.0), 0.0, double{kMaxTarget});
+  return static_cast<int>(quarters);
+}
+
+std::array<std::uint8_t, 4> SetTargetCommand(int channel, int target_quarter_us) {
+  const int target = std::clamp(target_quarter_us, 0, kMaxTarget);
+  return {kSetTarget, static_cast<std::uint8_t>(channel & 0x7F),
+          static_cast<std::uint8_t>(target & 0x7F),
+          static_cast<std::uint8_t>((target >> 7) & 0x7F)};
+}
+
+std::uint16_t ErrorRegister(std::uint8_t low, std::uint8_t high) {
+  return static_cast<std::uint16_t>(low | (high << 8));
+}
+
+std::string DescribeErrors(std::uint16_t errors) {
+  static const char* const kNames[] = {
+      "serial signal error", "serial overrun error",    "serial buffer full",
+      "serial CRC error",    "serial protocol error",   "serial timeout",
+      "script stack error",  "script call stack error", "script program counter error",
+  };
+  if (errors == 0) return "none";
+  std::string text;
+  for (int bit = 0; bit < 16; ++bit) {
+    if (!(errors & (1u << bit))) continue;
+    if (!text.empty()) text += ", ";
+    text += bit < 9 ? std::string(kNames[bit]) : std::string("unknown error");
+    text += " (bit " + std::to_string(bit) + ")";
+  }
+  return text;
+}
+
+}  // namespace kapfix::agent::maestro

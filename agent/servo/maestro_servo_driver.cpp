@@ -1,0 +1,200 @@
+#include "agent/servo/maestro_servo_driver.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <spdlog/spdlog.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "agent/servo/maestro_protocol.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+bool BaudConstant(int baud, speed_t* speed) {
+  switch (baud) {
+    case 9600:
+      *speed = B9600;
+      return true;
+    case 19200:
+      *speed = B19200;
+      return true;
+    case 38400:
+      *speed = B38400;
+      return true;
+    case 57600:
+      *speed = B57600;
+      return true;
+    case 115200:
+      *speed = B115200;
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::string ErrnoText(int code) { return std::strerror(code); }
+
+}  // namespace
+
+bool MaestroServoDriverOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (device.empty()) return fail("Maestro device path is empty");
+  speed_t speed{};
+  if (!BaudConstant(baud, &speed)) {
+    return fail("Maestro baud must be 9600, 19200, 38400, 57600 or 115200, got " +
+                std::to_string(baud));
+  }
+  std::string reason;
+  if (!pan.IsValid(maestro::kMaxChannels, &reason)) return fail("Maestro pan: " + reason);
+  if (!tilt.IsValid(maestro::kMaxChannels, &reason)) return fail("Maestro tilt: " + reason);
+  if (pan.channel == tilt.channel) return fail("Maestro pan and tilt use the same channel");
+  if (answer_timeout_ms < 1 || answer_timeout_ms > 10000) {
+    return fail("Maestro answer_timeout_ms must be 1…10000, got " +
+                std::to_string(answer_timeout_ms));
+  }
+  return true;
+}
+
+MaestroServoDriver::MaestroServoDriver(MaestroServoDriverOptions options)
+    : options_(std::move(options)) {}
+
+MaestroServoDriver::~MaestroServoDriver() { Close(); }
+
+void MaestroServoDriver::Close() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+bool MaestroServoDriver::Fail(const std::string& reason, std::string* error) const {
+  if (error) *error = "Maestro on " + options_.device + ": " + reason;
+  return false;
+}
+
+bool MaestroServoDriver::Open(std::string* error) {
+  Close();
+  std::string reason;
+  if (!options_.IsValid(&reason)) return Fail(reason, error);
+  fd_ = ::open(options_.device.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+  if (fd_ < 0) {
+    const int code = errno;
+    std::string text = "cannot open (" + ErrnoText(code) + ")";
+    if (code == EACCES) text += "; is the agent's user in group dialout?";
+    return Fail(text, error);
+  }
+  termios tty{};
+  if (::tcgetattr(fd_, &tty) != 0) {
+    const int code = errno;
+    Close();
+    return Fail("not a serial port (" + ErrnoText(code) + ")", error);
+  }
+  // Raw 8N1, no flow control, no echo, no line editing: every byte goes through unchanged.
+  ::cfmakeraw(&tty);
+  tty.c_cflag |= CLOCAL | CREAD;
+  tty.c_cflag &= ~static_cast<tcflag_t>(CSTOPB | CRTSCTS);
+  tty.c_cc[VMIN] = 0;
+  tty.c_cc[VTIME] = 0;
+  speed_t speed{};
+  BaudConstant(options_.baud, &speed);
+  ::cfsetispeed(&tty, speed);
+  ::cfsetospeed(&tty, speed);
+  if (::tcsetattr(fd_, TCSANOW, &tty) != 0) {
+    const int code = errno;
+    Close();
+    return Fail("cannot configure the port (" + ErrnoText(code) + ")", error);
+  }
+  ::tcflush(fd_, TCIOFLUSH);  // stale bytes would be read as the answer below
+
+  std::uint16_t errors = 0;
+  if (!GetErrors(&errors, error)) {
+    Close();
+    return false;
+  }
+  if (errors & maestro::kErrorSerialTimeout) {
+    spdlog::info(
+        "Maestro on {}: serial timeout fired since the last run (the timeout is "
+        "enabled); cleared",
+        options_.device);
+  }
+  if (errors & ~maestro::kErrorSerialTimeout) {
+    spdlog::warn("Maestro on {}: error register at open: {}; cleared", options_.device,
+                 maestro::DescribeErrors(errors));
+  }
+  spdlog::info("servo: {} open", Describe());
+  return true;
+}
+
+bool MaestroServoDriver::Write(const std::uint8_t* bytes, std::size_t count, std::string* error) {
+  if (fd_ < 0) return Fail("not open", error);
+  while (count > 0) {
+    const ssize_t written = ::write(fd_, bytes, count);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return Fail("write failed (" + ErrnoText(errno) + "); Maestro unplugged?", error);
+    }
+    bytes += written;
+    count -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+bool MaestroServoDriver::GetErrors(std::uint16_t* errors, std::string* error) {
+  const std::uint8_t command = maestro::kGetErrors;
+  if (!Write(&command, 1, error)) return false;
+  std::uint8_t answer[2] = {0, 0};
+  std::size_t received = 0;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.answer_timeout_ms);
+  while (received < 2) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    pollfd p{fd_, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(left.count()));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) break;
+    const ssize_t got = ::read(fd_, answer + received, 2 - received);
+    if (got < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (got <= 0) break;
+    received += static_cast<std::size_t>(got);
+  }
+  if (received < 2) {
+    return Fail("no answer to Get Errors (0xA1) within " +
+                    std::to_string(options_.answer_timeout_ms) +
+                    " ms; is its serial mode \"USB Dual Port\" (use the Command Port) or a fixed "
+                    "baud rate of " +
+                    std::to_string(options_.baud) + "?",
+                error);
+  }
+  *errors = maestro::ErrorRegister(answer[0], answer[1]);
+  return true;
+}
+
+bool MaestroServoDriver::SetAngle(ServoAxis axis, double deg, std::string* error) {
+  if (!std::isfinite(deg)) {
+    return Fail(std::string(ToString(axis)) + " angle is not finite; not sent", error);
+  }
+  const ServoChannelMapping& mapping = axis == ServoAxis::kPan ? options_.pan : options_.tilt;
+  const auto command = maestro::SetTargetCommand(
+      mapping.channel, maestro::QuarterMicroseconds(mapping.PulseUs(deg)));
+  return Write(command.data(), command.size(), error);
+}
+
+bool MaestroServoDriver::Park(std::string* error) {
+  return SetAngle(ServoAxis::kPan, 0.0, error) && SetAngle(ServoAxis::kTilt, 0.0, error);
+}
+
+std::string MaestroServoDriver::Describe() const {
+  return "maestro " + options_.device + " (pan ch " + std::to_string(options_.pan.channel) +
+         ", tilt ch " + std::to_string(options_.tilt.channel) + ")";
+}
+
+}  // namespace kapfix::agent

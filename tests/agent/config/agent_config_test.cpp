@@ -1,0 +1,234 @@
+#include "agent/config/agent_config.hpp"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace kapfix::agent {
+namespace {
+
+std::string Resource(const std::string& name) {
+  return std::string(KAPFIX_RESOURCES_DIR) + "/" + name;
+}
+
+// Writes configuration files into a private temporary directory, removed afterwards.
+class AgentConfigFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = ::testing::TempDir() + "kapfix-config-XXXXXX";
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override {
+    if (!dir_.empty()) std::filesystem::remove_all(dir_);
+  }
+  std::string Write(const std::string& text) {
+    const std::string path = dir_ + "/agent.json";
+    std::ofstream(path) << text;
+    return path;
+  }
+  // Loads `text` from a file; returns the error ("" on success).
+  std::string LoadError(const std::string& text) {
+    AgentConfig config;
+    std::string error;
+    if (LoadAgentConfig(Write(text), &config, &error)) return "";
+    return error;
+  }
+  std::string dir_;
+};
+
+TEST(AgentConfigTest, DefaultConfigIsValid) {
+  std::string error;
+  EXPECT_TRUE(AgentConfig{}.IsValid(&error)) << error;
+}
+
+TEST(AgentConfigTest, DefaultConfigRunsInSimulation) {
+  const AgentConfig config;
+  EXPECT_EQ(config.camera.backend, CameraBackend::kSim);
+  EXPECT_EQ(config.servo.backend, ServoBackend::kSim);
+}
+
+TEST(AgentConfigTest, KiteExampleLoads) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadAgentConfig(Resource("kite.json"), &config, &error)) << error;
+  EXPECT_EQ(config.simulation.motion, MotionKind::kKite);
+  EXPECT_EQ(config.search.axis, SearchAxis::kX);
+}
+
+TEST(AgentConfigTest, BoatExampleLoads) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadAgentConfig(Resource("boat.json"), &config, &error)) << error;
+  EXPECT_EQ(config.simulation.motion, MotionKind::kBoat);
+  EXPECT_EQ(config.search.axis, SearchAxis::kY);
+}
+
+TEST(AgentConfigTest, ExamplesDescribeTheirHardware) {
+  AgentConfig kite;
+  AgentConfig boat;
+  ASSERT_TRUE(LoadAgentConfig(Resource("kite.json"), &kite, nullptr));
+  ASSERT_TRUE(LoadAgentConfig(Resource("boat.json"), &boat, nullptr));
+  EXPECT_EQ(kite.camera.backend, CameraBackend::kAravis);
+  EXPECT_EQ(kite.servo.backend, ServoBackend::kMaestro);
+  EXPECT_EQ(boat.camera.backend, CameraBackend::kV4l2);
+  EXPECT_EQ(boat.servo.backend, ServoBackend::kPca9685);
+}
+
+TEST(AgentConfigTest, MissingFileNamesThePathAndTheReason) {
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(LoadAgentConfig("/nonexistent/kapfix/agent.json", &config, &error));
+  EXPECT_EQ(error, "/nonexistent/kapfix/agent.json: cannot read (No such file or directory)");
+}
+
+TEST_F(AgentConfigFileTest, BadJsonNamesTheFileAndTheLine) {
+  const std::string error = LoadError("{\n  \"agent_id\": \"a\",\n  \"watchdog_ms\": ,\n}\n");
+  EXPECT_EQ(error.rfind(dir_ + "/agent.json: invalid JSON", 0), 0u) << error;
+  EXPECT_NE(error.find("line 3"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, OutOfRangeValueNamesTheField) {
+  const std::string error = LoadError(R"({"camera": {"fps": 0}})");
+  EXPECT_EQ(error, dir_ + "/agent.json: camera.fps: must be in (0, 1000], got 0.000000");
+}
+
+TEST_F(AgentConfigFileTest, UnknownKeyIsAnError) {
+  const std::string error = LoadError(R"({"servo": {"pan": {"max_degs": 30}}})");
+  EXPECT_NE(error.find("servo.pan.max_degs: unknown key"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, UnknownTopLevelKeyIsAnError) {
+  const std::string error = LoadError(R"({"wachdog_ms": 300})");
+  EXPECT_NE(error.find("wachdog_ms: unknown key"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, UnknownEnumValueListsTheChoices) {
+  const std::string error = LoadError(R"({"camera": {"backend": "usb"}})");
+  EXPECT_NE(error.find("camera.backend: unknown value 'usb' (sim, v4l2 or aravis)"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(AgentConfigFileTest, WrongTypeIsAnError) {
+  const std::string error = LoadError(R"({"video": {"quality": "high"}})");
+  EXPECT_NE(error.find("video.quality: must be an integer"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, ServoLimitOutsideItsPulseRangeIsAnError) {
+  // 60 deg · 10 µs/deg from 1500 µs needs 2100 µs, beyond max_us = 2000.
+  const std::string error = LoadError(R"({"servo": {"pan": {"max_deg": 60}}})");
+  EXPECT_NE(error.find("servo.pan: limits"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, ParkOutsideTheLimitsIsAnError) {
+  const std::string error = LoadError(R"({"servo": {"tilt": {"park_deg": -60}}})");
+  EXPECT_NE(error.find("servo.tilt:"), std::string::npos) << error;
+  EXPECT_NE(error.find("park_deg"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, LensMustNameAProfile) {
+  const std::string error = LoadError(R"({"lens": "8mm"})");
+  EXPECT_EQ(error, dir_ + "/agent.json: lens: no lens profile named '8mm'");
+}
+
+TEST_F(AgentConfigFileTest, EmptyLensListIsAnError) {
+  const std::string error = LoadError(R"({"lenses": []})");
+  EXPECT_NE(error.find("lenses: at least one"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, DuplicateLensNamesAreAnError) {
+  const std::string error = LoadError(
+      R"({"lenses": [{"name": "a", "focal_mm": 6, "pixel_pitch_um": 5},
+                     {"name": "a", "focal_mm": 4, "pixel_pitch_um": 5}], "lens": "a"})");
+  EXPECT_NE(error.find("used twice"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, BadSamplingNamesTheField) {
+  const std::string error = LoadError(R"({"search": {"sampling": "random:2"}})");
+  EXPECT_NE(error.find("search.sampling:"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, PatchLargerThanTheFrameIsAnError) {
+  const std::string error =
+      LoadError(R"({"camera": {"width": 320, "height": 240}, "search": {"patch_px": 300}})");
+  EXPECT_NE(error.find("search.patch_px"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, CurveNeedsBothFiles) {
+  const std::string error = LoadError(R"({"link": {"curve_secret_key_file": "/etc/k"}})");
+  EXPECT_NE(error.find("link.curve_authorized_keys_file"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, SameAddressForCommandsAndStreamsIsAnError) {
+  const std::string error =
+      LoadError(R"({"link": {"command": "tcp://*:6000", "stream": "tcp://*:6000"}})");
+  EXPECT_NE(error.find("link.stream"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, AddressWithoutPortIsAnError) {
+  const std::string error = LoadError(R"({"link": {"command": "tcp://*"}})");
+  EXPECT_NE(error.find("link.command"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, PartialFileKeepsDefaultsForTheRest) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(
+      LoadAgentConfig(Write(R"({"agent_id": "kite-2", "camera": {"fps": 60}})"), &config, &error))
+      << error;
+  EXPECT_EQ(config.agent_id, "kite-2");
+  EXPECT_EQ(config.camera.fps, 60);
+  EXPECT_EQ(config.camera.width, 640);
+  EXPECT_EQ(config.link.command_address, "tcp://*:5555");
+  EXPECT_EQ(config.link.stream_address, "tcp://*:5556");
+}
+
+TEST_F(AgentConfigFileTest, FailedLoadLeavesTheConfigUntouched) {
+  AgentConfig config;
+  config.agent_id = "before";
+  EXPECT_FALSE(
+      LoadAgentConfig(Write(R"({"agent_id": "after", "watchdog_ms": 1})"), &config, nullptr));
+  EXPECT_EQ(config.agent_id, "before");
+}
+
+TEST_F(AgentConfigFileTest, I2cAddressMayBeAHexString) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadAgentConfig(Write(R"({"servo": {"i2c_address": "0x41"}})"), &config, &error))
+      << error;
+  EXPECT_EQ(config.servo.i2c_address, 0x41);
+}
+
+TEST_F(AgentConfigFileTest, NullGainLeavesTheCameraGain) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadAgentConfig(Write(R"({"camera": {"gain_db": null}})"), &config, &error)) << error;
+  EXPECT_FALSE(config.camera.gain_db.has_value());
+}
+
+TEST_F(AgentConfigFileTest, TopLevelArrayIsAnError) {
+  const std::string error = LoadError("[]");
+  EXPECT_NE(error.find("must be a JSON object"), std::string::npos) << error;
+}
+
+TEST(AgentConfigTest, ServoConfigTranslatesToMaestroOptions) {
+  ServoConfig servo;
+  servo.backend = ServoBackend::kMaestro;
+  servo.tilt.mapping.channel = 3;
+  const MaestroServoDriverOptions options = servo.ToMaestroOptions();
+  EXPECT_EQ(options.device, "/dev/ttyACM0");
+  EXPECT_EQ(options.tilt.channel, 3);
+}
+
+TEST(AgentConfigTest, CameraDeviceOverridesTheV4l2Default) {
+  CameraConfig camera;
+  camera.device = "/dev/video2";
+  EXPECT_EQ(camera.ToV4l2Options().device, "/dev/video2");
+}
+
+}  // namespace
+}  // namespace kapfix::agent
