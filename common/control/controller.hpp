@@ -1,0 +1,65 @@
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "common/control/lens_calibration.hpp"
+
+namespace kapfix {
+
+// What one frame tells the controller (SPEC §2.8).
+struct ControlInput {
+  // [px] measured displacement, stored-reference convention (SPEC §1): where the reference
+  // patch is found minus where it was. An axis that was not searched carries 0.
+  cv::Point2d displacement_px{0, 0};
+  double confidence = 0.0;  // [0, 1] of the match
+  bool found = false;       // false: no usable measurement this frame (the servos hold)
+  double dt_s = 0.0;        // [s] since the previous Update; ≤ 0 or non-finite: no time passed
+};
+
+struct ServoTargets {
+  double pan_deg = 0.0;   // [deg]
+  double tilt_deg = 0.0;  // [deg]
+};
+
+// Operator-set gains (SPEC §2.8). The hard servo limits are enforced elsewhere (by the servo
+// driver), never here: a controller may ask for anything.
+struct ControllerGains {
+  double p = 1.0;  // [1] share of the measured displacement corrected per frame
+  double i = 0.0;  // [1/s] PID only: integral gain on ∫displacement dt
+  double d = 0.0;  // [s] PID only: derivative gain on d(displacement)/dt
+  // [px] per axis, measured displacements smaller than this are not corrected, so the
+  // servos do not hunt on measurement noise.
+  double dead_band_px = 0.5;
+  // [deg/s] largest |target − current| per second of dt on each axis; 0 = none.
+  double rate_limit_deg_per_s = 0;
+  // [px] PID only: the integral term's contribution is clamped to ± this (anti-windup).
+  double integral_limit_px = 50;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Turns one frame's measurement into servo targets. `current` is what the frame was seen
+// through: the servo angles while it was exposed (in simulation the servos' output angles;
+// on open-loop hardware the command that had taken effect by then). Working from the angles
+// the measurement belongs to, rather than from the last command, keeps plain P stable at
+// gain 1 whatever the servo latency: target = current + displacement · deg_per_px is exactly
+// the angle that would have held that frame.
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual ServoTargets Update(const ControlInput& input, const ServoTargets& current) = 0;
+  // Forgets all history (integrator, swing model): call on a new reference or lost lock.
+  virtual void Reset() = 0;
+  virtual std::string name() const = 0;
+  // The lens's deg per px may change in flight (new calibration, another lens profile).
+  virtual void SetCalibration(const LensCalibration& calibration) = 0;
+};
+
+// Limits each axis's move from `current` to rate_deg_per_s · dt_s; rate 0 = no limit. A
+// non-positive or non-finite dt with a rate set means no time passed: the targets stay at
+// `current`.
+ServoTargets ApplyRateLimit(const ServoTargets& target, const ServoTargets& current,
+                            double rate_deg_per_s, double dt_s);
+
+}  // namespace kapfix

@@ -1,0 +1,62 @@
+#include "common/control/pid_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace kapfix {
+namespace {
+
+double InsideDeadBand(double displacement_px, double dead_band_px) {
+  return std::abs(displacement_px) >= dead_band_px ? displacement_px : 0.0;
+}
+
+}  // namespace
+
+PidController::PidController(ControllerGains gains, LensCalibration calibration) : gains_(gains) {
+  std::string error;
+  if (!gains_.IsValid(&error)) throw std::invalid_argument("PidController: " + error);
+  SetCalibration(calibration);
+}
+
+void PidController::SetCalibration(const LensCalibration& calibration) {
+  std::string error;
+  if (!calibration.IsValid(&error)) throw std::invalid_argument("PidController: " + error);
+  calibration_ = calibration;
+}
+
+void PidController::Reset() {
+  integral_ = {0, 0};
+  previous_ = {0, 0};
+  has_previous_ = false;
+}
+
+ServoTargets PidController::Update(const ControlInput& input, const ServoTargets& current) {
+  const cv::Point2d d = input.displacement_px;
+  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
+    has_previous_ = false;  // the next difference would span the gap
+    return current;
+  }
+  const cv::Point2d e(InsideDeadBand(d.x, gains_.dead_band_px),
+                      InsideDeadBand(d.y, gains_.dead_band_px));
+  const bool timed = std::isfinite(input.dt_s) && input.dt_s > 0.0;
+  cv::Point2d derivative(0, 0);
+  if (timed) {
+    integral_ += e * input.dt_s;
+    if (gains_.i > 0.0) {
+      // Anti-windup: the integral may not ask for more than integral_limit_px on its own.
+      const double limit = gains_.integral_limit_px / gains_.i;
+      integral_.x = std::clamp(integral_.x, -limit, limit);
+      integral_.y = std::clamp(integral_.y, -limit, limit);
+    }
+    if (has_previous_) derivative = (e - previous_) / input.dt_s;
+  }
+  previous_ = e;
+  has_previous_ = true;
+  const cv::Point2d correction_px = gains_.p * e + gains_.i * integral_ + gains_.d * derivative;
+  const ServoTargets target{current.pan_deg + correction_px.x * calibration_.pan_deg_per_px,
+                            current.tilt_deg + correction_px.y * calibration_.tilt_deg_per_px};
+  return ApplyRateLimit(target, current, gains_.rate_limit_deg_per_s, input.dt_s);
+}
+
+}  // namespace kapfix

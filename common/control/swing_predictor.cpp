@@ -1,0 +1,303 @@
+#include "common/control/swing_predictor.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace kapfix {
+namespace {
+
+constexpr int kMaxOrder = 32;
+constexpr double kOutlierSigmas = 4.0;  // AR residuals beyond this many σ (from MAD) dropped
+
+double Median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+bool SwingPredictorOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (order < 1 || order > kMaxOrder) {
+    return fail("predictor order must be 1…" + std::to_string(kMaxOrder) + ", got " +
+                std::to_string(order));
+  }
+  if (lead_frames < 1 || lead_frames > 1000) {
+    return fail("predictor lead must be 1…1000 frames, got " + std::to_string(lead_frames));
+  }
+  // A robust fit of p + 1 unknowns wants several samples per unknown.
+  if (window_frames < 4 * (order + 1) || window_frames > 100000) {
+    return fail("predictor window must be 4·(order + 1)…100000 frames, got " +
+                std::to_string(window_frames));
+  }
+  if (smoothing_frames < order || smoothing_frames > window_frames) {
+    return fail("predictor smoothing must be order…window frames, got " +
+                std::to_string(smoothing_frames));
+  }
+  if (!(jump_sigmas > 0) || !std::isfinite(jump_sigmas) || !(min_jump >= 0) ||
+      !std::isfinite(min_jump)) {
+    return fail("predictor jump thresholds must be finite, σ > 0, minimum ≥ 0");
+  }
+  if (!(max_spectral_radius > 0) || !std::isfinite(max_spectral_radius)) {
+    return fail("predictor max spectral radius must be > 0");
+  }
+  if (!std::isfinite(linear_prior_min_step) || linear_prior_min_step < 0) {
+    return fail("predictor linear prior step must be ≥ 0");
+  }
+  if (skill_frames < 1 || min_skill_samples < 1 || max_coast_frames < 0) {
+    return fail("predictor skill span and samples must be ≥ 1, coast frames ≥ 0");
+  }
+  return true;
+}
+
+SwingPredictor::SwingPredictor(SwingPredictorOptions options) : options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument("SwingPredictor: " + error);
+  Clear();
+}
+
+void SwingPredictor::Clear() {
+  history_.clear();
+  coefficients_.clear();
+  state_.clear();
+  since_restart_ = 0;
+  chosen_ = Forecaster::kPersistence;
+  for (double& s : skill_) s = std::numeric_limits<double>::quiet_NaN();
+  innovation_sq_ = 0;
+  innovation_samples_ = 0;
+  coasted_ = 0;
+}
+
+double SwingPredictor::OneStep(const std::vector<double>& state) const {
+  const int p = options_.order;
+  double next = coefficients_[p];
+  for (int i = 0; i < p; ++i) next += coefficients_[i] * state[i];
+  return next;
+}
+
+double SwingPredictor::ModelForecast(std::vector<double> state, int frames) const {
+  double next = state[0];
+  for (int k = 0; k < frames; ++k) {
+    next = OneStep(state);
+    state.pop_back();
+    state.insert(state.begin(), next);
+  }
+  return next;
+}
+
+std::optional<double> SwingPredictor::Forecast(int frames) const {
+  const int n = samples();
+  if (n == 0 || frames < 1) return std::nullopt;
+  switch (chosen_) {
+    case Forecaster::kModel:
+      if (static_cast<int>(state_.size()) != options_.order) break;  // the state fit failed
+      return ModelForecast(state_, frames);
+    case Forecaster::kLinear:
+      if (n < 2) break;
+      return history_[n - 1] + frames * (history_[n - 1] - history_[n - 2]);
+    case Forecaster::kPersistence:
+      break;
+  }
+  return history_[n - 1];
+}
+
+std::optional<double> SwingPredictor::Predict() const {
+  if (chosen_ == Forecaster::kPersistence) return std::nullopt;
+  return Forecast(options_.lead_frames);
+}
+
+double SwingPredictor::skill_rms(Forecaster forecaster) const {
+  return skill_[static_cast<int>(forecaster)];
+}
+
+void SwingPredictor::Add(double x) {
+  if (!std::isfinite(x)) {
+    AddMissing();
+    return;
+  }
+  coasted_ = 0;
+  Append(x, /*imputed=*/false);
+}
+
+bool SwingPredictor::AddMissing() {
+  if (chosen_ == Forecaster::kPersistence || coasted_ >= options_.max_coast_frames) {
+    Clear();
+    return false;
+  }
+  ++coasted_;
+  Append(*Forecast(1), /*imputed=*/true);
+  return true;
+}
+
+void SwingPredictor::Append(double x, bool imputed) {
+  const int p = options_.order;
+  // Jump detection on the model's one-step innovation.
+  since_restart_ = std::min(since_restart_ + 1, options_.window_frames);
+  if (!imputed && !coefficients_.empty() && static_cast<int>(state_.size()) == p) {
+    const double innovation = x - OneStep(state_);
+    const double rms = std::sqrt(innovation_sq_);
+    const bool jump =
+        innovation_samples_ >= options_.smoothing_frames &&
+        std::abs(innovation) > std::max(options_.jump_sigmas * rms, options_.min_jump);
+    if (jump) {
+      ++jumps_;
+      since_restart_ = p;  // the state fit restarts from the newest p samples
+    } else {
+      const double alpha = 1.0 / std::min(innovation_samples_ + 1, options_.skill_frames);
+      innovation_sq_ += alpha * (innovation * innovation - innovation_sq_);
+      ++innovation_samples_;
+    }
+  }
+
+  history_.push_back(x);
+  while (static_cast<int>(history_.size()) > options_.window_frames) history_.pop_front();
+  // While coasting the coefficients stay: imputed samples are the model's own.
+  if (!imputed || coefficients_.empty()) Refit();
+  FitState();
+  // Keep the choice while coasting: the imputed samples would flatter the forecaster that
+  // made them.
+  if (!imputed) Score();
+}
+
+void SwingPredictor::Score() {
+  const int n = samples();
+  const int p = options_.order;
+  const int lead = options_.lead_frames;
+  double sum[3] = {0, 0, 0};
+  int count[3] = {0, 0, 0};
+  std::vector<double> state(static_cast<std::size_t>(p));
+  for (int t = std::max(0, n - options_.skill_frames); t < n; ++t) {
+    const int known = t - lead;  // the newest sample known when forecasting t
+    if (known < 0) continue;
+    const double x = history_[t];
+    const auto add = [&](Forecaster f, double forecast) {
+      const double e = x - forecast;
+      sum[static_cast<int>(f)] += e * e;
+      ++count[static_cast<int>(f)];
+    };
+    add(Forecaster::kPersistence, history_[known]);
+    if (known >= 1) {
+      add(Forecaster::kLinear, history_[known] + lead * (history_[known] - history_[known - 1]));
+    }
+    if (!coefficients_.empty() && known >= p - 1) {
+      for (int i = 0; i < p; ++i) state[i] = history_[known - i];
+      add(Forecaster::kModel, ModelForecast(state, lead));
+    }
+  }
+  chosen_ = Forecaster::kPersistence;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Forecaster f : {Forecaster::kPersistence, Forecaster::kLinear, Forecaster::kModel}) {
+    const int i = static_cast<int>(f);
+    skill_[i] =
+        count[i] > 0 ? std::sqrt(sum[i] / count[i]) : std::numeric_limits<double>::quiet_NaN();
+    const bool eligible =
+        f == Forecaster::kPersistence ? count[i] > 0 : count[i] >= options_.min_skill_samples;
+    if (eligible && skill_[i] < best) {
+      best = skill_[i];
+      chosen_ = f;
+    }
+  }
+  // Before there is evidence either way, a platform that swings moves smoothly: extrapolate
+  // its last step rather than hold (persistence trails a 40-frame swing by ~30 px two frames
+  // ahead; the extrapolation by ~3 px) — unless the step is small enough to be jitter.
+  const int linear = static_cast<int>(Forecaster::kLinear);
+  if (chosen_ == Forecaster::kPersistence && n >= 2 && count[linear] < options_.min_skill_samples &&
+      std::abs(history_[n - 1] - history_[n - 2]) >= options_.linear_prior_min_step) {
+    chosen_ = Forecaster::kLinear;
+  }
+  if (chosen_ == Forecaster::kModel && state_.empty()) chosen_ = Forecaster::kPersistence;
+}
+
+bool SwingPredictor::Refit() {
+  const int p = options_.order;
+  const int n = static_cast<int>(history_.size());
+  const int rows = n - p;
+  coefficients_.clear();
+  if (rows < 2 * (p + 1)) return false;
+  Eigen::MatrixXd a(rows, p + 1);
+  Eigen::VectorXd b(rows);
+  for (int r = 0; r < rows; ++r) {
+    const int t = r + p;
+    for (int i = 0; i < p; ++i) a(r, i) = history_[t - 1 - i];
+    a(r, p) = 1.0;
+    b(r) = history_[t];
+  }
+  // Below full rank (a constant series, say) there is no unique fit, and no swing to model.
+  const auto solve = [p](const Eigen::MatrixXd& m, const Eigen::VectorXd& v, Eigen::VectorXd* out) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
+    qr.setThreshold(1e-9);
+    if (qr.rank() < p + 1) return false;
+    *out = qr.solve(v);
+    return out->allFinite();
+  };
+  Eigen::VectorXd w;
+  if (!solve(a, b, &w)) return false;
+  // One robust pass: refit without the residuals beyond kOutlierSigmas (a gust's innovation,
+  // a bad match).
+  const Eigen::VectorXd residual = b - a * w;
+  std::vector<double> abs_res(residual.size());
+  for (int r = 0; r < rows; ++r) abs_res[r] = std::abs(residual(r));
+  const double sigma = 1.4826 * Median(abs_res);
+  if (sigma > 0) {
+    std::vector<int> keep;
+    for (int r = 0; r < rows; ++r) {
+      if (abs_res[r] <= kOutlierSigmas * sigma) keep.push_back(r);
+    }
+    if (static_cast<int>(keep.size()) < rows && static_cast<int>(keep.size()) >= 2 * (p + 1)) {
+      Eigen::MatrixXd a2(static_cast<Eigen::Index>(keep.size()), p + 1);
+      Eigen::VectorXd b2(static_cast<Eigen::Index>(keep.size()));
+      for (std::size_t k = 0; k < keep.size(); ++k) {
+        a2.row(static_cast<Eigen::Index>(k)) = a.row(keep[k]);
+        b2(static_cast<Eigen::Index>(k)) = b(keep[k]);
+      }
+      Eigen::VectorXd w2;
+      if (solve(a2, b2, &w2)) w = w2;
+    }
+  }
+  // Reject fits that would grow without bound: the companion matrix's spectral radius.
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(p, p);
+  for (int i = 0; i < p; ++i) companion(0, i) = w(i);
+  for (int i = 1; i < p; ++i) companion(i, i - 1) = 1.0;
+  const double radius = companion.eigenvalues().cwiseAbs().maxCoeff();
+  if (!(radius <= options_.max_spectral_radius)) return false;
+  coefficients_.assign(w.data(), w.data() + w.size());
+  return true;
+}
+
+void SwingPredictor::FitState() {
+  const int p = options_.order;
+  const int n = static_cast<int>(history_.size());
+  state_.clear();
+  if (coefficients_.empty() || n < p) return;
+  const int k = std::clamp(std::min(options_.smoothing_frames, since_restart_), p, n);
+  // Window y_0 … y_{k−1} (the last k samples). Its first p values z are the unknowns; the
+  // model makes every later value affine in them: y_m = B_m · z + P_m.
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(k, p);
+  Eigen::VectorXd forced = Eigen::VectorXd::Zero(k);
+  for (int m = 0; m < k; ++m) {
+    if (m < p) {
+      basis(m, m) = 1.0;
+      continue;
+    }
+    forced(m) = coefficients_[p];
+    for (int i = 0; i < p; ++i) {
+      basis.row(m) += coefficients_[i] * basis.row(m - 1 - i);
+      forced(m) += coefficients_[i] * forced(m - 1 - i);
+    }
+  }
+  Eigen::VectorXd y(k);
+  for (int m = 0; m < k; ++m) y(m) = history_[n - k + m] - forced(m);
+  const Eigen::VectorXd z = basis.colPivHouseholderQr().solve(y);
+  const Eigen::VectorXd fitted = basis * z + forced;
+  if (!fitted.allFinite()) return;
+  for (int i = 0; i < p; ++i) state_.push_back(fitted(k - 1 - i));
+}
+
+}  // namespace kapfix

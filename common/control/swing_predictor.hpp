@@ -1,0 +1,113 @@
+#pragma once
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kapfix {
+
+struct SwingPredictorOptions {
+  // [1] autoregressive order p. A kite's damped pendulum (with same-period gusts) is exactly
+  // AR(2) plus an offset; a boat's roll with superposed waves needs more.
+  int order = 2;
+  int lead_frames = 2;     // [frames] how far ahead Predict() looks
+  int window_frames = 80;  // [frames] history the model's coefficients are fitted on
+  // [frames] the model's state is fitted on the last this-many samples (noise averaging),
+  // fewer right after a detected jump.
+  int smoothing_frames = 8;
+  // A one-step innovation beyond jump_sigmas · its running RMS (and beyond min_jump) is a
+  // jump — a gust, say — and restarts the state fit at the newest samples.
+  double jump_sigmas = 4.0;
+  double min_jump = 1.0;  // [units of the samples, px in the controller]
+  // Fits whose companion matrix has a larger spectral radius grow without bound: rejected.
+  double max_spectral_radius = 1.05;
+  // [frames] how many recent samples each forecaster is scored on (see SwingPredictor).
+  int skill_frames = 20;
+  // The model is used only once it has been scored on at least this many samples; linear
+  // is used until it has been scored on this many and found worse than persistence.
+  int min_skill_samples = 3;
+  // [units] the linear forecaster is preferred before it has been scored only after a step
+  // at least this large: a kite swing moves up to ~16 px per frame, while SPEC §3's jitter
+  // (σ = 2 px, so σ = 2.8 px per step) stays below 8 px in 99.6 % of steps, and
+  // extrapolating jitter would amplify it.
+  double linear_prior_min_step = 8.0;
+  int max_coast_frames = 3;  // [frames] missing samples bridged by the model's own forecast
+
+  bool IsValid(std::string* error) const;
+};
+
+// Forecasts a scalar series sampled once per frame — the line of sight of a swinging
+// platform — lead_frames ahead (SPEC §3: the view is seen one frame late and the servo adds
+// its latency, so a controller must act on where the swing will be, not where it was).
+//
+// Three forecasters compete:
+//  - persistence: "it stays where it is" — what a plain proportional controller acts on;
+//  - linear: the last step extrapolated (x_n + lead·(x_n − x_{n−1})), which carries the loop
+//    while the model has too few samples; until it has been scored it is preferred to
+//    persistence after a large step (a swinging platform moves smoothly);
+//  - model: x_n = a_1·x_{n−1} + … + a_p·x_{n−p} + c, least squares over the window, refitted
+//    after every sample with one robust pass (residuals beyond 4σ of their MAD dropped, so a
+//    gust's single innovation does not bend the fit). A damped sinusoid around an offset
+//    satisfies AR(2) exactly, whatever its amplitude and phase, and a gust of the same period
+//    breaks the recurrence for one sample only; white jitter around an offset fits as that
+//    offset. The forecast starts from the state (the last p values) fitted through the model
+//    to the last smoothing_frames samples, which averages the measurement noise the
+//    recurrence would otherwise amplify (×3.5 for a 40-frame period two frames ahead); a jump
+//    restarts that fit from the newest p samples.
+// After every sample each forecaster is scored on the last skill_frames samples, forecasting
+// each from what was known lead_frames before it (the model with its current coefficients
+// and raw samples). Predict() returns the best one's forecast, or nothing — the caller falls
+// back to plain P — while persistence is best.
+class SwingPredictor {
+ public:
+  enum class Forecaster { kPersistence, kLinear, kModel };
+
+  // Throws std::invalid_argument for options that are not IsValid.
+  explicit SwingPredictor(SwingPredictorOptions options = {});
+
+  // The newest sample (one per frame, in order). Non-finite samples count as missing.
+  void Add(double x);
+  // No sample this frame: bridged with the chosen forecaster's one-step forecast for up to
+  // max_coast_frames in a row while that is not persistence. Returns false, and forgets
+  // everything, otherwise.
+  bool AddMissing();
+  void Clear();
+
+  // The forecast lead_frames after the newest sample, unless persistence is the best.
+  std::optional<double> Predict() const;
+  // The chosen forecaster's forecast `frames` (≥ 1) after the newest sample; the newest
+  // sample itself for persistence; nothing without samples.
+  std::optional<double> Forecast(int frames) const;
+  Forecaster chosen() const { return chosen_; }
+
+  int samples() const { return static_cast<int>(history_.size()); }
+  bool has_model() const { return !coefficients_.empty(); }
+  // [units] RMS error of a forecaster over its last scoring; NaN when it was not scored.
+  double skill_rms(Forecaster forecaster) const;
+  int jumps() const { return jumps_; }  // jumps detected since construction
+  const std::vector<double>& coefficients() const { return coefficients_; }  // a_1…a_p, c
+  const SwingPredictorOptions& options() const { return options_; }
+
+ private:
+  void Append(double x, bool imputed);
+  bool Refit();
+  void FitState();
+  void Score();
+  double OneStep(const std::vector<double>& state) const;  // state newest first
+  double ModelForecast(std::vector<double> state, int frames) const;
+
+  SwingPredictorOptions options_;
+  std::deque<double> history_;        // oldest first, at most window_frames
+  std::vector<double> coefficients_;  // a_1…a_p, c; empty when there is no model
+  std::vector<double> state_;         // fitted last p values, newest first
+  int since_restart_ = 0;             // samples since the last jump (bounds the state fit)
+  Forecaster chosen_ = Forecaster::kPersistence;
+  double skill_[3] = {0, 0, 0};  // RMS per Forecaster, NaN when not scored
+  double innovation_sq_ = 0;     // running mean squared one-step innovation of the model
+  int innovation_samples_ = 0;
+  int coasted_ = 0;  // missing samples bridged in a row
+  int jumps_ = 0;
+};
+
+}  // namespace kapfix

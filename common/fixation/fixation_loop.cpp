@@ -1,0 +1,127 @@
+#include "common/fixation/fixation_loop.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "common/selection/slice_geometry.hpp"
+
+namespace kapfix {
+
+bool FixationOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!search.IsValid(error) || !sampling.IsValid(error)) return false;
+  if (patch_size < 1) return fail("patch size must be ≥ 1 px, got " + std::to_string(patch_size));
+  if (slice_count < 1 || slice < 1 || slice > slice_count) {
+    return fail("slice must be 1…slice count (" + std::to_string(slice_count) + "), got " +
+                std::to_string(slice));
+  }
+  if (!(lock_lost_confidence >= 0.0 && lock_lost_confidence <= 1.0)) {
+    return fail("lock-lost confidence must be in [0, 1], got " +
+                std::to_string(lock_lost_confidence));
+  }
+  if (lock_lost_frames < 1) {
+    return fail("lock-lost frames must be ≥ 1, got " + std::to_string(lock_lost_frames));
+  }
+  if (!std::isfinite(follow_decay_frames) || follow_decay_frames <= 0) {
+    return fail("follow decay must be > 0 frames, got " + std::to_string(follow_decay_frames));
+  }
+  return true;
+}
+
+FixationLoop::FixationLoop(FixationOptions options, std::shared_ptr<const SearchStrategy> strategy,
+                           std::unique_ptr<Controller> controller, LensCalibration calibration)
+    : options_(options),
+      strategy_(std::move(strategy)),
+      controller_(std::move(controller)),
+      origin_(options_.search.origin) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument("FixationLoop: " + error);
+  if (!strategy_ || !controller_) {
+    throw std::invalid_argument("FixationLoop: needs a search strategy and a controller");
+  }
+  SetCalibration(calibration);
+}
+
+void FixationLoop::SetCalibration(const LensCalibration& calibration) {
+  std::string error;
+  if (!calibration.IsValid(&error)) throw std::invalid_argument("FixationLoop: " + error);
+  controller_->SetCalibration(calibration);
+}
+
+cv::Mat FixationLoop::Plane(const cv::Mat& frame_bgr) const {
+  cv::Mat plane = ExtractChannel(frame_bgr, options_.channel);
+  // A grey frame comes back as it is: copy it, or the caller's next frame written into the
+  // same buffer would silently change the stored reference.
+  if (plane.data == frame_bgr.data) plane = plane.clone();
+  return plane;
+}
+
+void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
+  const cv::Mat plane = Plane(frame_bgr);
+  const cv::Rect patch =
+      SlicePatch(plane.size(), options_.slice_count, options_.slice, options_.patch_size);
+  samples_ = SampleSet({patch}, options_.sampling);
+  reference_.emplace(plane, samples_);
+  patch_ = patch;
+  origin_ = options_.search.origin;
+  follow_sum_ = {0, 0};
+  untrusted_frames_ = 0;
+  controller_->Reset();
+}
+
+FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTargets& current,
+                                         double dt_s) {
+  const auto start = std::chrono::steady_clock::now();
+  Step step;
+  step.targets = current;
+  const auto finish = [&start, &step]() {
+    step.loop_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    return step;
+  };
+  if (!reference_) {
+    step.lock_lost = true;
+    return finish();
+  }
+
+  const cv::Mat plane = Plane(frame_bgr);
+  SearchOptions search = options_.search;
+  if (options_.track_origin) search.origin = origin_;
+  step.match = strategy_->Search(*reference_, plane, search);
+
+  const bool trusted = step.match.found && step.match.confidence >= options_.lock_lost_confidence;
+  untrusted_frames_ = trusted ? 0 : untrusted_frames_ + 1;
+  step.lock_lost = untrusted_frames_ >= options_.lock_lost_frames;
+  if (trusted) origin_ = step.match.shift;
+
+  cv::Point2d displacement = trusted ? step.match.displacement : cv::Point2d(0, 0);
+  // Only the searched axes are measured: the other one's value is the search's by-product
+  // (its origin, or pyr's coarse cross-axis tolerance), not a measurement to steer by.
+  if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
+  if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
+
+  if (options_.reference == FixationOptions::Reference::kPrevious) {
+    // The view's offset from the first reference is the sum of its frame-to-frame steps;
+    // the leak lets the reference follow the boat's slow course instead.
+    const double keep = std::exp(-1.0 / options_.follow_decay_frames);
+    follow_sum_ = follow_sum_ * keep + displacement;
+    displacement = follow_sum_;
+    reference_.emplace(plane, samples_);
+    origin_ = options_.search.origin;  // the next step is measured against this frame
+  }
+
+  ControlInput input;
+  input.displacement_px = displacement;
+  input.confidence = step.match.confidence;
+  input.found = trusted;
+  input.dt_s = dt_s;
+  step.targets = controller_->Update(input, current);
+  return finish();
+}
+
+}  // namespace kapfix

@@ -1,0 +1,94 @@
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "common/control/controller.hpp"
+#include "common/control/lens_calibration.hpp"
+#include "common/image/color_channel.hpp"
+#include "common/matching/reference_patch.hpp"
+#include "common/sampling/sampling_pattern.hpp"
+#include "common/search/search_strategy.hpp"
+
+namespace kapfix {
+
+struct FixationOptions {
+  // Axis, range and sub-pixel of the search. Only the searched axes are controlled: an axis
+  // that is not searched (Y of a kite's kX) reaches the controller as 0 and its servo holds.
+  SearchOptions search;
+  SamplingOptions sampling;
+  ColorChannel channel = ColorChannel::kGreen;
+  int patch_size = 100;  // [px] side of the square reference patch
+  int slice_count = 9;   // N slices (SPEC §1)
+  int slice = 5;         // 1 = top … slice_count; SSP chooses it
+  // A frame whose match confidence is below this (or that found no match) is not trusted:
+  // the controller gets it as not found. After lock_lost_frames such frames in a row the
+  // lock is reported lost (the agent then re-runs SSP, SPEC §2.6).
+  double lock_lost_confidence = 0.05;
+  int lock_lost_frames = 5;
+  enum class Reference {
+    kStored,    // fixate: every frame is compared with the reference stored by SetReference
+    kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
+  };
+  Reference reference = Reference::kStored;
+  // Centre each search on the previous trusted match's shift instead of search.origin: the
+  // view moves little between frames, so the window stays centred on the answer even while
+  // the loop still trails the swing. (Follow compares consecutive frames, whose step is
+  // small: it always searches around search.origin.)
+  bool track_origin = true;
+  // [frames] follow only: the frame-to-frame displacements are summed with this leak time
+  // constant into a displacement from a reference that slowly moves with the boat's course,
+  // which is what the controllers act on.
+  double follow_decay_frames = 50;
+
+  bool IsValid(std::string* error) const;
+};
+
+// One frame of fixation (SPEC §2.8, §4 "fixate"/"follow"), pure: measure the displacement of
+// the reference patch in the frame, then ask the controller for servo targets. No threads,
+// no I/O; not thread-safe (one control thread owns it). The caller sends the targets to the
+// servos, whose driver enforces the hard limits.
+class FixationLoop {
+ public:
+  // Throws std::invalid_argument for options or a calibration that are not IsValid, or a
+  // null strategy or controller. The calibration is handed to the controller.
+  FixationLoop(FixationOptions options, std::shared_ptr<const SearchStrategy> strategy,
+               std::unique_ptr<Controller> controller, LensCalibration calibration);
+
+  // Stores the reference patch at the slice of `frame_bgr` (BGR or grey, 8 bit) and resets
+  // the controller and the lock. Throws std::invalid_argument when the patch does not fit.
+  void SetReference(const cv::Mat& frame_bgr);
+  bool has_reference() const { return reference_.has_value(); }
+  cv::Rect patch() const { return patch_; }  // [px] the patch in the reference frame
+
+  struct Step {
+    SearchResult match;    // displacement in the stored-reference convention (follow: step)
+    ServoTargets targets;  // [deg] what to command now
+    bool lock_lost = false;
+    double loop_us = 0;  // [µs] wall time of this Process call
+  };
+  // `current`: the servo angles `frame_bgr` was captured through; `dt_s`: time since the
+  // previous frame. Without a reference the servos hold and the lock is reported lost.
+  Step Process(const cv::Mat& frame_bgr, const ServoTargets& current, double dt_s);
+
+  void SetCalibration(const LensCalibration& calibration);
+  const FixationOptions& options() const { return options_; }
+  const Controller& controller() const { return *controller_; }
+
+ private:
+  cv::Mat Plane(const cv::Mat& frame_bgr) const;
+
+  FixationOptions options_;
+  std::shared_ptr<const SearchStrategy> strategy_;
+  std::unique_ptr<Controller> controller_;
+  SampleSet samples_;
+  cv::Rect patch_;
+  std::optional<ReferencePatch> reference_;
+  cv::Point origin_{0, 0};
+  cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
+  int untrusted_frames_ = 0;
+};
+
+}  // namespace kapfix

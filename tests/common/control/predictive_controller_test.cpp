@@ -1,0 +1,140 @@
+#include "common/control/predictive_controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <deque>
+#include <numbers>
+
+#include "common/control/proportional_controller.hpp"
+
+namespace kapfix {
+namespace {
+
+// A loop without images: the swing m(t) [px] plus an ideal servo whose angle shows in the
+// view `lead` frames after the command (capture t → command → first frame showing it,
+// t + lead). The controller measures d(t) = −(m(t) + angle(t) · px_per_deg), as a matcher
+// would against the reference at frame 0 (SPEC §1).
+class NumericLoop {
+ public:
+  NumericLoop(double px_per_deg, int lead) : px_per_deg_(px_per_deg), lead_(lead) {}
+
+  static double Swing(int t) { return 100 * std::sin(2 * std::numbers::pi * t / 40.0); }
+
+  // Runs frames 0 … frames − 1; returns the largest |view offset| over frames ≥ from.
+  double Run(Controller& controller, int frames, int from) {
+    double worst = 0;
+    for (int t = 0; t < frames; ++t) {
+      const double angle = AngleAt(t);
+      const double offset = Swing(t) + angle * px_per_deg_;
+      if (t >= from) worst = std::max(worst, std::abs(offset));
+      ControlInput input;
+      input.displacement_px = {-offset, 0};
+      input.confidence = 1;
+      input.found = true;
+      input.dt_s = 0.04;
+      commands_.push_back(controller.Update(input, {angle, 0}).pan_deg);
+    }
+    return worst;
+  }
+
+  double AngleAt(int t) const {
+    const int sent = t - lead_;  // the command sent after capturing frame `sent`
+    return sent >= 0 && sent < static_cast<int>(commands_.size()) ? commands_[sent] : 0.0;
+  }
+
+ private:
+  double px_per_deg_;
+  int lead_;
+  std::deque<double> commands_;
+};
+
+ControllerGains NoDeadBand() {
+  ControllerGains gains;
+  gains.dead_band_px = 0;
+  return gains;
+}
+
+PredictiveOptions Lead(int frames) {
+  PredictiveOptions options;
+  options.predictor.lead_frames = frames;
+  return options;
+}
+
+ControlInput Measured(double dx) {
+  ControlInput input;
+  input.displacement_px = {dx, 0};
+  input.confidence = 1;
+  input.found = true;
+  input.dt_s = 0.04;
+  return input;
+}
+
+TEST(PredictiveControllerTest, HoldsAPureSwingWithinAFractionOfAPixel) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  NumericLoop loop(10, 2);
+  EXPECT_LT(loop.Run(controller, 200, 40), 0.01);
+  EXPECT_TRUE(controller.predicting_pan());
+}
+
+TEST(PredictiveControllerTest, PlainPTrailsTheSameSwingByTwoFramesOfMotion) {
+  // Why prediction (SPEC §3): at 15.7 px per frame, two frames late is ~30 px.
+  ProportionalController controller(NoDeadBand(), {0.1, 0.1});
+  NumericLoop loop(10, 2);
+  EXPECT_GT(loop.Run(controller, 200, 40), 25.0);
+}
+
+TEST(PredictiveControllerTest, ServoMountedTheOtherWayIsHeldThroughANegativeCalibration) {
+  PredictiveController controller(NoDeadBand(), {-0.1, -0.1}, Lead(2));
+  NumericLoop loop(-10, 2);
+  EXPECT_LT(loop.Run(controller, 200, 40), 0.01);
+}
+
+TEST(PredictiveControllerTest, LongerServoLatencyIsPredictedFurtherAhead) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(4));
+  NumericLoop loop(10, 4);
+  EXPECT_LT(loop.Run(controller, 200, 60), 0.01);
+}
+
+TEST(PredictiveControllerTest, FirstSmallDisplacementIsCorrectedLikePlainP) {
+  PredictiveController controller({}, {0.1, 0.1}, Lead(2));
+  const ServoTargets t = controller.Update(Measured(3), {1.0, 0});
+  EXPECT_DOUBLE_EQ(t.pan_deg, 1.0 + 0.3);
+  EXPECT_FALSE(controller.predicting_pan());
+}
+
+TEST(PredictiveControllerTest, CoastsThroughAShortDropoutThenHolds) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  NumericLoop loop(10, 2);
+  loop.Run(controller, 100, 0);
+  ControlInput lost = Measured(0);
+  lost.found = false;
+  const ServoTargets current{1.0, 0.0};
+  for (int k = 0; k < 3; ++k) {  // max_coast_frames
+    EXPECT_NE(controller.Update(lost, current).pan_deg, current.pan_deg) << "dropout " << k;
+  }
+  EXPECT_DOUBLE_EQ(controller.Update(lost, current).pan_deg, current.pan_deg);
+  EXPECT_FALSE(controller.predicting_pan());
+}
+
+TEST(PredictiveControllerTest, ResetForgetsTheSwing) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  NumericLoop loop(10, 2);
+  loop.Run(controller, 100, 0);
+  controller.Reset();
+  EXPECT_DOUBLE_EQ(controller.Update(Measured(2), {}).pan_deg, 0.2);  // plain P again
+  EXPECT_FALSE(controller.predicting_pan());
+}
+
+TEST(PredictiveControllerTest, CorrectionInsideTheDeadBandHolds) {
+  ControllerGains gains;
+  gains.dead_band_px = 0.5;
+  PredictiveController controller(gains, {0.1, 0.1}, Lead(2));
+  // A still view with a constant 0.3 px offset: the model forecasts 0.3 px, inside the band.
+  for (int t = 0; t < 60; ++t) controller.Update(Measured(0.3 + 0.01 * (t % 3)), {});
+  EXPECT_DOUBLE_EQ(controller.Update(Measured(0.3), {}).pan_deg, 0.0);
+  EXPECT_TRUE(controller.predicting_pan());  // held by the band, not by the P fallback
+}
+
+}  // namespace
+}  // namespace kapfix

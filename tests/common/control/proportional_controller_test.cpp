@@ -1,0 +1,77 @@
+#include "common/control/proportional_controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace kapfix {
+namespace {
+
+constexpr LensCalibration kLens{0.1, 0.2};  // [deg/px]
+
+ControlInput Measured(double dx, double dy, double dt_s = 0.04) {
+  ControlInput input;
+  input.displacement_px = {dx, dy};
+  input.confidence = 0.9;
+  input.found = true;
+  input.dt_s = dt_s;
+  return input;
+}
+
+TEST(ProportionalControllerTest, PositiveDisplacementGivesAPositiveCorrection) {
+  ProportionalController c({}, kLens);
+  const ServoTargets t = c.Update(Measured(10, -5), {1.0, 2.0});
+  EXPECT_DOUBLE_EQ(t.pan_deg, 1.0 + 10 * 0.1);
+  EXPECT_DOUBLE_EQ(t.tilt_deg, 2.0 - 5 * 0.2);
+}
+
+TEST(ProportionalControllerTest, GainScalesTheCorrection) {
+  ControllerGains gains;
+  gains.p = 0.5;
+  ProportionalController c(gains, kLens);
+  EXPECT_DOUBLE_EQ(c.Update(Measured(10, 0), {}).pan_deg, 0.5);
+}
+
+TEST(ProportionalControllerTest, DisplacementInsideTheDeadBandHoldsThatAxis) {
+  ControllerGains gains;
+  gains.dead_band_px = 1.0;
+  ProportionalController c(gains, kLens);
+  const ServoTargets t = c.Update(Measured(0.9, 1.0), {3.0, 4.0});
+  EXPECT_DOUBLE_EQ(t.pan_deg, 3.0);
+  EXPECT_DOUBLE_EQ(t.tilt_deg, 4.0 + 0.2);
+}
+
+TEST(ProportionalControllerTest, NotFoundHoldsTheServos) {
+  ProportionalController c({}, kLens);
+  ControlInput input = Measured(50, 50);
+  input.found = false;
+  const ServoTargets t = c.Update(input, {3.0, 4.0});
+  EXPECT_DOUBLE_EQ(t.pan_deg, 3.0);
+  EXPECT_DOUBLE_EQ(t.tilt_deg, 4.0);
+}
+
+TEST(ProportionalControllerTest, RateLimitBoundsTheMovePerSecond) {
+  ControllerGains gains;
+  gains.rate_limit_deg_per_s = 10;
+  ProportionalController c(gains, kLens);
+  const ServoTargets t = c.Update(Measured(100, -100, 0.05), {0, 0});  // asks 10° and −20°
+  EXPECT_DOUBLE_EQ(t.pan_deg, 0.5);
+  EXPECT_DOUBLE_EQ(t.tilt_deg, -0.5);
+}
+
+TEST(ProportionalControllerTest, RateLimitWithoutElapsedTimeHolds) {
+  ControllerGains gains;
+  gains.rate_limit_deg_per_s = 10;
+  ProportionalController c(gains, kLens);
+  EXPECT_DOUBLE_EQ(c.Update(Measured(100, 0, 0.0), {1.0, 0}).pan_deg, 1.0);
+}
+
+TEST(ProportionalControllerTest, RejectsNegativeGainsAndAZeroCalibration) {
+  ControllerGains gains;
+  gains.p = -1;
+  EXPECT_THROW(ProportionalController(gains, kLens), std::invalid_argument);
+  EXPECT_THROW(ProportionalController({}, LensCalibration{0, 0.1}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace kapfix

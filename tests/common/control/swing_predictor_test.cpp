@@ -1,0 +1,137 @@
+#include "common/control/swing_predictor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "common/sim/sim_random.hpp"
+
+namespace kapfix {
+namespace {
+
+using Forecaster = SwingPredictor::Forecaster;
+
+constexpr double kOmega = 2 * std::numbers::pi / 40;  // SPEC §3: T = 40 frames
+
+// 100 px swing around 20 px, decaying with τ = 400 frames.
+double Swing(int t) { return 20 + 100 * std::sin(kOmega * t) * std::exp(-t / 400.0); }
+
+// Feeds samples 0 … frames − 1 of `measured` and returns the RMS error of the forecasts
+// against `truth` two frames later, over the forecasts for samples ≥ from.
+double ForecastRms(SwingPredictor& predictor, const std::function<double(int)>& measured,
+                   const std::function<double(int)>& truth, int frames, int from) {
+  const int lead = predictor.options().lead_frames;
+  std::vector<double> forecast(static_cast<std::size_t>(frames + lead), std::nan(""));
+  double sum_sq = 0;
+  int count = 0;
+  for (int t = 0; t < frames; ++t) {
+    if (t >= from) {
+      EXPECT_TRUE(std::isfinite(forecast[t])) << "no forecast for sample " << t;
+      sum_sq += (forecast[t] - truth(t)) * (forecast[t] - truth(t));
+      ++count;
+    }
+    predictor.Add(measured(t));
+    if (const auto f = predictor.Predict()) forecast[t + lead] = *f;
+  }
+  return std::sqrt(sum_sq / count);
+}
+
+TEST(SwingPredictorTest, PredictsAPureSwingTwoFramesAhead) {
+  SwingPredictor predictor;  // lead 2
+  for (int t = 0; t < 40; ++t) predictor.Add(Swing(t));
+  EXPECT_EQ(predictor.chosen(), Forecaster::kModel);
+  ASSERT_TRUE(predictor.Predict().has_value());
+  EXPECT_NEAR(*predictor.Predict(), Swing(41), 1e-6);
+}
+
+TEST(SwingPredictorTest, PredictsANoisySwingWithinAFewTenthsOfAPixel) {
+  SwingPredictor predictor;
+  const auto noisy = [](int t) { return Swing(t) + 0.2 * SimGaussian(3, 0, t); };
+  // Persistence would be off by up to 2 · 15.7 px; the raw AR(2) recurrence amplifies the
+  // 0.2 px noise ×3.5, to 0.7 px. The state fit averages it.
+  EXPECT_LT(ForecastRms(predictor, noisy, Swing, 300, 40), 0.4);
+}
+
+TEST(SwingPredictorTest, RecoversTwoSamplesAfterAGust) {
+  SwingPredictor predictor;
+  // A gust at sample 60: a second swing of the same period and decay starts from rest
+  // (SPEC §3).
+  const auto gusty = [](int t) {
+    return Swing(t) +
+           (t >= 60 ? 30 * std::sin(kOmega * (t - 60)) * std::exp(-(t - 60) / 400.0) : 0.0);
+  };
+  for (int t = 0; t < 62; ++t) predictor.Add(gusty(t));
+  EXPECT_EQ(predictor.jumps(), 1);
+  // The forecast made after the gust's first sample already follows the new swing.
+  EXPECT_NEAR(*predictor.Predict(), gusty(63), 1e-6);
+}
+
+TEST(SwingPredictorTest, WhiteJitterIsForecastAsItsMean) {
+  SwingPredictor predictor;
+  for (int t = 0; t < 200; ++t) predictor.Add(5 + 2 * SimGaussian(4, 0, t));
+  EXPECT_EQ(predictor.chosen(), Forecaster::kModel);
+  ASSERT_TRUE(predictor.Predict().has_value());
+  EXPECT_NEAR(*predictor.Predict(), 5.0, 0.7);
+}
+
+TEST(SwingPredictorTest, ConstantSeriesFallsBackToPersistence) {
+  SwingPredictor predictor;
+  for (int t = 0; t < 50; ++t) predictor.Add(3.0);
+  EXPECT_FALSE(predictor.has_model());  // no swing to fit
+  EXPECT_EQ(predictor.chosen(), Forecaster::kPersistence);
+  EXPECT_FALSE(predictor.Predict().has_value());
+}
+
+TEST(SwingPredictorTest, LargeFirstStepIsExtrapolated) {
+  SwingPredictor predictor;
+  predictor.Add(0);
+  predictor.Add(10);
+  EXPECT_EQ(predictor.chosen(), Forecaster::kLinear);
+  EXPECT_DOUBLE_EQ(predictor.Predict().value_or(0), 30.0);  // 10 + 2 · 10
+}
+
+TEST(SwingPredictorTest, SmallFirstStepIsNotExtrapolated) {
+  SwingPredictor predictor;
+  predictor.Add(0);
+  predictor.Add(3);  // below linear_prior_min_step: may be jitter
+  EXPECT_FALSE(predictor.Predict().has_value());
+}
+
+TEST(SwingPredictorTest, LinearLosesToPersistenceOnJitter) {
+  SwingPredictorOptions options;
+  options.window_frames = 400;  // no model in the first 20 samples: linear vs persistence only
+  options.order = 8;
+  SwingPredictor predictor(options);
+  for (int t = 0; t < 20; ++t) predictor.Add(10 * SimGaussian(5, 0, t));
+  EXPECT_FALSE(predictor.has_model());
+  EXPECT_EQ(predictor.chosen(), Forecaster::kPersistence);
+}
+
+TEST(SwingPredictorTest, CoastsOverAShortGapThenGivesUp) {
+  SwingPredictor predictor;  // max_coast_frames 3
+  for (int t = 0; t < 40; ++t) predictor.Add(Swing(t));
+  for (int t = 40; t < 43; ++t) {
+    EXPECT_TRUE(predictor.AddMissing()) << "sample " << t;
+    EXPECT_NEAR(*predictor.Predict(), Swing(t + 2), 1e-6);
+  }
+  EXPECT_FALSE(predictor.AddMissing());
+  EXPECT_EQ(predictor.samples(), 0);
+  EXPECT_FALSE(predictor.Predict().has_value());
+}
+
+TEST(SwingPredictorTest, RejectsAWindowTooShortForTheOrder) {
+  SwingPredictorOptions options;
+  options.order = 8;
+  options.window_frames = 30;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("window"), std::string::npos);
+  EXPECT_THROW(SwingPredictor{options}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace kapfix
