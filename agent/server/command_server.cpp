@@ -1,0 +1,321 @@
+#include "agent/server/command_server.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <exception>
+#include <future>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <thread>
+#include <utility>
+#include <vector>
+#include <zmq.hpp>
+
+#include "kapfix/v1/heartbeat.pb.h"
+
+namespace kapfix::agent {
+namespace {
+
+using kapfix::v1::Command;
+using kapfix::v1::ErrorCode;
+using kapfix::v1::Reply;
+
+// A request has at most routing id, delimiter, topic and message; anything longer is
+// malformed, and its extra frames are read and discarded rather than kept in memory.
+constexpr std::size_t kMaxFramesKept = 4;
+
+constexpr std::string_view kCommandTopic = "command";
+constexpr std::string_view kHeartbeatTopic = "heartbeat";
+constexpr std::string_view kReplyTopic = "reply";
+
+std::string_view View(const zmq::message_t& frame) { return frame.to_string_view(); }
+
+// One request as it arrived: the frames kept and how many there were in all.
+struct Request {
+  std::vector<zmq::message_t> frames;
+  std::size_t frame_count = 0;
+  std::int64_t received_us = 0;  // [µs since epoch]
+};
+
+// What a request's frames say, and how to address the answer.
+struct Envelope {
+  bool delimiter = false;            // an empty frame followed the routing id
+  std::optional<std::string> topic;  // the topic frame, if one was sent
+  std::string_view payload;
+};
+
+}  // namespace
+
+struct CommandServer::Impl {
+  Impl(AgentControl& agent, CommandServerOptions opts)
+      : control(agent), options(std::move(opts)), validator(options.limits) {}
+
+  void Run(std::promise<std::string> bound);
+  void Serve(zmq::socket_t& socket);
+  void Handle(zmq::socket_t& socket, const Request& request);
+  void HandleCommand(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
+  void HandleHeartbeat(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
+  Reply Check(const Request& request, const Envelope& envelope, Command& command);
+  void SendReply(zmq::socket_t& socket, const Request& request, const Envelope& envelope,
+                 Reply reply, std::uint64_t command_sequence);
+  void Send(zmq::socket_t& socket, const Request& request, bool delimiter,
+            std::optional<std::string_view> topic, const std::string& payload);
+
+  AgentControl& control;
+  const CommandServerOptions options;
+  const CommandValidator validator;
+
+  std::unique_ptr<zmq::context_t> context;
+  std::thread thread;
+
+  std::atomic<std::uint64_t> commands_ok{0};
+  std::atomic<std::uint64_t> commands_refused{0};
+  std::atomic<std::uint64_t> heartbeats_echoed{0};
+  std::atomic<std::uint64_t> heartbeats_ignored{0};
+  std::atomic<std::int64_t> last_station_heard_us{0};
+
+  // Owned by the server thread. Keyed by routing id: ROUTER gives each connection its own,
+  // so a station that reconnects starts a new numbering, and no station can pose as another.
+  kapfix::v1::SequenceGuard command_guard;
+  kapfix::v1::SequenceGuard heartbeat_guard;
+  std::uint64_t reply_sequence = 0;
+  std::uint64_t heartbeat_sequence = 0;
+};
+
+void CommandServer::Impl::Run(std::promise<std::string> bound) {
+  std::optional<zmq::socket_t> socket;
+  try {
+    socket.emplace(*context, zmq::socket_type::router);
+    socket->set(zmq::sockopt::linger, 0);  // Stop() must not wait for replies to gone peers
+    socket->set(zmq::sockopt::maxmsgsize, options.transport_limit_bytes);
+    socket->set(zmq::sockopt::heartbeat_ivl,
+                static_cast<int>(options.zmtp_heartbeat_interval.count()));
+    socket->set(zmq::sockopt::heartbeat_timeout,
+                static_cast<int>(options.zmtp_heartbeat_timeout.count()));
+    socket->bind(options.bind_endpoint);
+    bound.set_value(socket->get(zmq::sockopt::last_endpoint));
+  } catch (const zmq::error_t& error) {
+    bound.set_exception(std::make_exception_ptr(std::runtime_error(
+        "command server cannot bind '" + options.bind_endpoint + "': " + error.what())));
+    return;
+  }
+  Serve(*socket);
+}
+
+void CommandServer::Impl::Serve(zmq::socket_t& socket) {
+  while (true) {
+    Request request;
+    try {
+      bool more = true;
+      while (more) {
+        zmq::message_t frame;
+        // Blocks; Stop() shuts the context down, which makes it throw ETERM. The frames after
+        // the first arrive together with it (ZeroMQ delivers whole messages).
+        (void)socket.recv(frame, zmq::recv_flags::none);
+        more = frame.more();
+        if (request.frames.size() < kMaxFramesKept) request.frames.push_back(std::move(frame));
+        ++request.frame_count;
+      }
+    } catch (const zmq::error_t& error) {
+      if (error.num() == ETERM) return;
+      continue;  // EINTR (a signal): the partial request is lost, its peer times out
+    }
+    request.received_us = kapfix::v1::NowMicros();
+    try {
+      Handle(socket, request);
+    } catch (const zmq::error_t& error) {
+      if (error.num() == ETERM) return;
+    }
+  }
+}
+
+void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) {
+  Envelope envelope;
+  std::size_t next = 1;  // frames[0] is the routing id
+  if (request.frames.size() > next && request.frames[next].size() == 0) {
+    envelope.delimiter = true;
+    ++next;
+  }
+  const std::size_t parts = request.frame_count - next;
+  if (parts == 2) {
+    envelope.topic = request.frames[next].to_string();
+    envelope.payload = View(request.frames[next + 1]);
+  } else if (parts == 1) {
+    envelope.payload = View(request.frames[next]);
+  } else {
+    Reply reply;
+    reply.set_error(kapfix::v1::ERROR_CODE_MALFORMED);
+    reply.set_reason("malformed request: expected [topic,] message after the routing id" +
+                     std::string(envelope.delimiter ? " and the empty delimiter" : "") + ", got " +
+                     std::to_string(parts) + " frames");
+    SendReply(socket, request, envelope, std::move(reply), 0);
+    return;
+  }
+  if (envelope.topic == kHeartbeatTopic) {
+    HandleHeartbeat(socket, request, envelope);
+  } else {
+    HandleCommand(socket, request, envelope);
+  }
+}
+
+void CommandServer::Impl::HandleCommand(zmq::socket_t& socket, const Request& request,
+                                        const Envelope& envelope) {
+  Command command;
+  Reply reply = Check(request, envelope, command);
+  if (reply.error() == kapfix::v1::ERROR_CODE_UNSPECIFIED) {
+    try {
+      reply = control.Execute(command);
+      if (command.has_request_state() && reply.ok() && !reply.has_state()) {
+        *reply.mutable_state() = control.State();
+      }
+    } catch (const std::exception& error) {
+      reply = Reply();
+      reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
+      reply.set_reason(std::string("the agent failed to execute the command: ") + error.what());
+    }
+  }
+  SendReply(socket, request, envelope, std::move(reply), command.header().sequence());
+}
+
+// Everything before Execute: decoding, addressing, replay, ranges. An error reply, or a reply
+// with error UNSPECIFIED when the command may go on; `command` holds what could be read.
+Reply CommandServer::Impl::Check(const Request& request, const Envelope& envelope,
+                                 Command& command) {
+  Reply reply;
+  std::string error;
+  ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
+  if (!kapfix::v1::DecodeEnvelope(envelope.topic.value_or(std::string(kCommandTopic)),
+                                  envelope.payload, &command, kapfix::v1::kMaxCommandBytes, &error,
+                                  &code)) {
+    if (code == kapfix::v1::ERROR_CODE_WRONG_VERSION) {
+      // The bytes parse; read them anyway, only so the reply can name the command's sequence
+      // and the station can match it to its request.
+      Command readable;
+      if (readable.ParseFromArray(envelope.payload.data(),
+                                  static_cast<int>(envelope.payload.size()))) {
+        *command.mutable_header() = readable.header();
+      }
+    }
+    reply.set_error(code);
+    reply.set_reason(error);
+    return reply;
+  }
+  const std::string& addressed = command.header().agent_id();
+  if (!addressed.empty() && addressed != options.agent_id) {
+    reply.set_error(kapfix::v1::ERROR_CODE_UNAUTHORIZED);
+    // Echoed only when short: cutting it could split a UTF-8 character, and a reply with
+    // invalid UTF-8 in a string would not parse at the station.
+    constexpr std::size_t kMaxEchoed = 64;
+    reply.set_reason("command addressed to agent " +
+                     (addressed.size() <= kMaxEchoed ? "'" + addressed + "'" : "(a long id)") +
+                     ", this is agent '" + options.agent_id + "'");
+    return reply;
+  }
+  if (!command_guard.Accept(View(request.frames[0]), command.header().sequence(), &error)) {
+    reply.set_error(kapfix::v1::ERROR_CODE_STALE_SEQUENCE);
+    reply.set_reason(error);
+    return reply;
+  }
+  last_station_heard_us.store(request.received_us);
+  try {
+    return validator.Validate(command, control.State());
+  } catch (const std::exception& failure) {
+    reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
+    reply.set_reason(std::string("the agent could not report its state: ") + failure.what());
+    return reply;
+  }
+}
+
+void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& request,
+                                          const Envelope& envelope) {
+  kapfix::v1::Heartbeat heartbeat;
+  // A heartbeat is not a command: nothing to refuse with a reply; a bad one is only counted.
+  if (!kapfix::v1::DecodeEnvelope(kHeartbeatTopic, envelope.payload, &heartbeat,
+                                  kapfix::v1::kMaxCommandBytes, nullptr) ||
+      !heartbeat_guard.Accept(View(request.frames[0]), heartbeat.header().sequence(), nullptr)) {
+    heartbeats_ignored.fetch_add(1);
+    return;
+  }
+  last_station_heard_us.store(request.received_us);
+  kapfix::v1::Heartbeat echo;
+  kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence);
+  echo.set_echoed_send_time_us(heartbeat.header().send_time_us());
+  echo.set_echoed_sequence(heartbeat.header().sequence());
+  echo.set_echo_hold_us(echo.header().send_time_us() - request.received_us);
+  echo.set_interval_ms(0);         // an answer, not a periodic heartbeat (those travel on the PUB)
+  heartbeats_echoed.fetch_add(1);  // before sending, so a station that got it sees it counted
+  Send(socket, request, envelope.delimiter, kHeartbeatTopic, echo.SerializeAsString());
+}
+
+void CommandServer::Impl::SendReply(zmq::socket_t& socket, const Request& request,
+                                    const Envelope& envelope, Reply reply,
+                                    std::uint64_t command_sequence) {
+  if (reply.ok()) {
+    reply.set_error(kapfix::v1::ERROR_CODE_UNSPECIFIED);
+    reply.clear_reason();
+  } else if (reply.error() == kapfix::v1::ERROR_CODE_UNSPECIFIED) {
+    // A refusal without a code would read as success to a careless station.
+    reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
+    if (reply.reason().empty()) reply.set_reason("the agent refused without giving a reason");
+  }
+  reply.set_command_sequence(command_sequence);
+  reply.clear_header();
+  kapfix::v1::Stamp(reply.mutable_header(), options.agent_id, ++reply_sequence);
+  (reply.ok() ? commands_ok : commands_refused).fetch_add(1);
+  const std::optional<std::string_view> topic =
+      envelope.topic ? std::optional<std::string_view>(kReplyTopic) : std::nullopt;
+  Send(socket, request, envelope.delimiter, topic, reply.SerializeAsString());
+}
+
+void CommandServer::Impl::Send(zmq::socket_t& socket, const Request& request, bool delimiter,
+                               std::optional<std::string_view> topic, const std::string& payload) {
+  // ROUTER never blocks on send: to a peer that is gone or full the message is dropped,
+  // which is all that can be done for a station that stopped listening.
+  constexpr auto kMore = zmq::send_flags::sndmore | zmq::send_flags::dontwait;
+  (void)socket.send(zmq::buffer(View(request.frames[0])), kMore);
+  if (delimiter) (void)socket.send(zmq::message_t(), kMore);
+  if (topic) (void)socket.send(zmq::buffer(*topic), kMore);
+  (void)socket.send(zmq::buffer(payload), zmq::send_flags::dontwait);
+}
+
+CommandServer::CommandServer(AgentControl& control, CommandServerOptions options)
+    : impl_(std::make_unique<Impl>(control, std::move(options))) {}
+
+CommandServer::~CommandServer() { Stop(); }
+
+std::string CommandServer::Start() {
+  if (impl_->thread.joinable()) throw std::runtime_error("command server already started");
+  impl_->context = std::make_unique<zmq::context_t>(1);
+  std::promise<std::string> bound;
+  std::future<std::string> endpoint = bound.get_future();
+  impl_->thread = std::thread([impl = impl_.get(), promise = std::move(bound)]() mutable {
+    impl->Run(std::move(promise));
+  });
+  try {
+    return endpoint.get();
+  } catch (...) {
+    impl_->thread.join();
+    impl_->context.reset();
+    throw;
+  }
+}
+
+void CommandServer::Stop() {
+  if (!impl_->thread.joinable()) return;
+  impl_->context->shutdown();  // wakes the blocking receive with ETERM
+  impl_->thread.join();
+  impl_->context.reset();
+}
+
+CommandServer::Counters CommandServer::counters() const {
+  Counters counters;
+  counters.commands_ok = impl_->commands_ok.load();
+  counters.commands_refused = impl_->commands_refused.load();
+  counters.heartbeats_echoed = impl_->heartbeats_echoed.load();
+  counters.heartbeats_ignored = impl_->heartbeats_ignored.load();
+  counters.last_station_heard_us = impl_->last_station_heard_us.load();
+  return counters;
+}
+
+}  // namespace kapfix::agent

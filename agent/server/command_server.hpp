@@ -1,0 +1,71 @@
+#pragma once
+
+// The agent's command socket (SPEC §5): a ROUTER on its own thread that answers every request
+// with exactly one stamped Reply, OK or an error naming the problem, and never dies on what a
+// station sends. Also answers station heartbeats with an echo, from which the station
+// measures the round-trip latency.
+//
+// Wire format, after the routing id that ROUTER adds: an optional empty delimiter frame (a
+// REQ socket sends one; the reply copies it), an optional topic frame ("command" or
+// "heartbeat"; the reply then carries "reply" or "heartbeat"), and the serialized message.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "agent/server/agent_control.hpp"
+#include "agent/server/command_validator.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
+
+namespace kapfix::agent {
+
+struct CommandServerOptions {
+  // ZeroMQ endpoint to bind; "tcp://127.0.0.1:*" binds an ephemeral port (see Start()).
+  std::string bind_endpoint = "tcp://*:5555";
+  std::string agent_id = "kapfix-agent";  // header.agent_id of every reply
+  // [bytes] ZMQ_MAXMSGSIZE: libzmq drops the connection of a peer that sends a larger frame,
+  // without delivering it, so no reply can name the problem. Commands up to this size are
+  // read, and those above kMaxCommandBytes refused with ERROR_CODE_OVERSIZED; the margin
+  // above kMaxCommandBytes is what lets a slightly oversized command get its error reply.
+  std::int64_t transport_limit_bytes = 4 * static_cast<std::int64_t>(kapfix::v1::kMaxCommandBytes);
+  // [ms] ZeroMQ heartbeats (ZMTP PING) on each connection: a station that vanished without
+  // closing its TCP connection (WiFi gone) is dropped after heartbeat_timeout.
+  std::chrono::milliseconds zmtp_heartbeat_interval{1000};
+  std::chrono::milliseconds zmtp_heartbeat_timeout{3000};
+  CommandLimits limits;
+};
+
+class CommandServer {
+ public:
+  struct Counters {
+    std::uint64_t commands_ok = 0;           // [count] replies with ok = true
+    std::uint64_t commands_refused = 0;      // [count] error replies, whatever the cause
+    std::uint64_t heartbeats_echoed = 0;     // [count] station heartbeats answered
+    std::uint64_t heartbeats_ignored = 0;    // [count] malformed or replayed heartbeats
+    std::int64_t last_station_heard_us = 0;  // [µs since epoch] last accepted command or
+                                             // heartbeat; 0 = never (link-loss detection)
+  };
+
+  // `control` must outlive the server (or at least Stop()).
+  CommandServer(AgentControl& control, CommandServerOptions options = {});
+  ~CommandServer();  // Stop()s
+  CommandServer(const CommandServer&) = delete;
+  CommandServer& operator=(const CommandServer&) = delete;
+
+  // Starts the thread, binds, and returns the bound endpoint (ZMQ_LAST_ENDPOINT, e.g.
+  // "tcp://127.0.0.1:41234"). Throws std::runtime_error when binding fails (address in use,
+  // bad endpoint) or when already started.
+  std::string Start();
+  // Returns promptly (shuts the server's ZeroMQ context down); idempotent. Requests in flight
+  // get no reply.
+  void Stop();
+
+  Counters counters() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kapfix::agent

@@ -1,0 +1,296 @@
+#include "agent/server/stream_publisher.hpp"
+
+#include <google/protobuf/descriptor.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <future>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+#include <utility>
+#include <zmq.hpp>
+
+#include "kapfix/v1/envelope_codec.hpp"
+#include "kapfix/v1/heartbeat.pb.h"
+
+namespace kapfix::agent {
+namespace {
+
+using google::protobuf::Message;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::string_view kVideoTopic = "video";
+constexpr std::string_view kTelemetryTopic = "telemetry";
+constexpr std::string_view kHeartbeatTopic = "heartbeat";
+
+// How long to wait before retrying a message ZeroMQ could not take (a subscriber's queue is at
+// its high-water mark): short, so telemetry catches up as soon as the link drains.
+constexpr auto kRetryDelay = std::chrono::milliseconds(1);
+
+// The header of a link message (`Header header = 1;`), or nullptr for any other message.
+kapfix::v1::Header* MutableHeader(Message& message) {
+  const auto* field = message.GetDescriptor()->FindFieldByNumber(1);
+  if (field == nullptr || field->message_type() == nullptr ||
+      field->message_type()->full_name() != kapfix::v1::Header::descriptor()->full_name()) {
+    return nullptr;
+  }
+  // A generated message's header is a generated Header; a DynamicMessage's is not, and is
+  // refused (nullptr) rather than stamped through reflection.
+  return dynamic_cast<kapfix::v1::Header*>(
+      message.GetReflection()->MutableMessage(&message, field));
+}
+
+struct Pending {
+  std::string topic;
+  std::unique_ptr<Message> message;
+  std::size_t bytes = 0;  // [bytes] serialized size when queued
+};
+
+}  // namespace
+
+struct StreamPublisher::Impl {
+  explicit Impl(StreamPublisherOptions opts)
+      : options(std::move(opts)), video_min_interval(options.video_min_interval) {}
+
+  void Run(std::promise<std::string> bound);
+  void Loop(zmq::socket_t& socket);
+  // Stamps and sends; false when ZeroMQ cannot take it now (high-water mark).
+  bool Send(zmq::socket_t& socket, const std::string& topic, Message& message);
+  void SendHeartbeat(zmq::socket_t& socket);
+
+  const StreamPublisherOptions options;
+
+  std::mutex mutex;  // guards the members up to `stopping`
+  std::condition_variable wake;
+  std::deque<Pending> queue;
+  std::size_t queued_bytes = 0;
+  std::unique_ptr<Message> latest_video;
+  std::chrono::microseconds video_min_interval;
+  bool stopping = false;
+
+  std::unique_ptr<zmq::context_t> context;
+  std::thread thread;
+
+  std::atomic<std::uint64_t> telemetry_sent{0};
+  std::atomic<std::uint64_t> telemetry_dropped{0};
+  std::atomic<std::uint64_t> video_sent{0};
+  std::atomic<std::uint64_t> video_dropped{0};
+  std::atomic<std::uint64_t> other_sent{0};
+  std::atomic<std::uint64_t> other_dropped{0};
+  std::atomic<std::uint64_t> heartbeats_sent{0};
+  std::atomic<std::uint64_t> rejected{0};
+
+  // Publisher thread only.
+  std::unordered_map<std::string, std::uint64_t> sequences;  // last sent, per topic
+  Clock::time_point last_video_sent{};
+};
+
+void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
+  std::optional<zmq::socket_t> socket;
+  try {
+    socket.emplace(*context, zmq::socket_type::pub);
+    socket->set(zmq::sockopt::linger, 0);
+    // A full subscriber queue makes send() fail with EAGAIN instead of dropping silently.
+    socket->set(zmq::sockopt::xpub_nodrop, true);
+    socket->set(zmq::sockopt::sndhwm, options.send_high_water_mark);
+    socket->set(zmq::sockopt::heartbeat_ivl,
+                static_cast<int>(options.zmtp_heartbeat_interval.count()));
+    socket->set(zmq::sockopt::heartbeat_timeout,
+                static_cast<int>(options.zmtp_heartbeat_timeout.count()));
+    socket->bind(options.bind_endpoint);
+    bound.set_value(socket->get(zmq::sockopt::last_endpoint));
+  } catch (const zmq::error_t& error) {
+    bound.set_exception(std::make_exception_ptr(std::runtime_error(
+        "stream publisher cannot bind '" + options.bind_endpoint + "': " + error.what())));
+    return;
+  }
+  try {
+    Loop(*socket);
+  } catch (const zmq::error_t&) {
+    // ETERM: Stop() shut the context down while a send was in progress.
+  }
+}
+
+void StreamPublisher::Impl::Loop(zmq::socket_t& socket) {
+  Clock::time_point next_heartbeat = Clock::now();
+  Clock::time_point retry_at{};  // queue paused until then after ZeroMQ refused a message
+  while (true) {
+    std::optional<Pending> item;
+    std::unique_ptr<Message> video;
+    {
+      std::unique_lock lock(mutex);
+      const auto video_due = [&] { return last_video_sent + video_min_interval; };
+      const auto ready = [&] {
+        const auto now = Clock::now();
+        return stopping || (!queue.empty() && now >= retry_at) ||
+               (latest_video != nullptr && now >= video_due());
+      };
+      Clock::time_point until = next_heartbeat;
+      if (!queue.empty()) until = std::min(until, retry_at);
+      if (latest_video != nullptr) until = std::min(until, video_due());
+      wake.wait_until(lock, until, ready);
+      if (stopping) return;
+      const auto now = Clock::now();
+      if (!queue.empty() && now >= retry_at) {
+        item = std::move(queue.front());
+        queue.pop_front();
+        queued_bytes -= item->bytes;
+      }
+      if (latest_video != nullptr && now >= video_due()) video = std::move(latest_video);
+    }
+    if (item) {
+      if (Send(socket, item->topic, *item->message)) {
+        (item->topic == kTelemetryTopic ? telemetry_sent : other_sent).fetch_add(1);
+      } else {
+        // Back to the head of the queue, order kept; retried after a short pause.
+        const std::lock_guard lock(mutex);
+        queued_bytes += item->bytes;
+        queue.push_front(std::move(*item));
+        retry_at = Clock::now() + kRetryDelay;
+      }
+    }
+    if (video) {
+      if (Send(socket, std::string(kVideoTopic), *video)) {
+        video_sent.fetch_add(1);
+        last_video_sent = Clock::now();
+      } else {
+        video_dropped.fetch_add(1);  // stale by the time ZeroMQ could take it: not retried
+      }
+    }
+    if (Clock::now() >= next_heartbeat) {
+      SendHeartbeat(socket);
+      next_heartbeat = std::max(next_heartbeat + options.heartbeat_interval,
+                                Clock::now() + options.heartbeat_interval / 2);
+    }
+  }
+}
+
+bool StreamPublisher::Impl::Send(zmq::socket_t& socket, const std::string& topic,
+                                 Message& message) {
+  const std::uint64_t sequence = sequences[topic] + 1;
+  kapfix::v1::Stamp(MutableHeader(message), options.agent_id, sequence);
+  const std::string bytes = message.SerializeAsString();
+  if (!socket.send(zmq::buffer(topic), zmq::send_flags::sndmore | zmq::send_flags::dontwait)) {
+    return false;
+  }
+  // The first part went: the rest of the message must follow (and is accepted, as the
+  // high-water mark counts whole messages). Blocking here is therefore at most momentary.
+  (void)socket.send(zmq::buffer(bytes), zmq::send_flags::none);
+  sequences[topic] = sequence;
+  return true;
+}
+
+void StreamPublisher::Impl::SendHeartbeat(zmq::socket_t& socket) {
+  kapfix::v1::Heartbeat heartbeat;
+  heartbeat.set_interval_ms(static_cast<std::uint32_t>(options.heartbeat_interval.count()));
+  // The round trip is measured on the command socket (CommandServer echoes each station's
+  // heartbeat): a PUB message reaches every station, so it cannot echo one of them.
+  if (Send(socket, std::string(kHeartbeatTopic), heartbeat)) heartbeats_sent.fetch_add(1);
+}
+
+StreamPublisher::StreamPublisher(StreamPublisherOptions options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {}
+
+StreamPublisher::~StreamPublisher() { Stop(); }
+
+std::string StreamPublisher::Start() {
+  if (impl_->thread.joinable()) throw std::runtime_error("stream publisher already started");
+  {
+    const std::lock_guard lock(impl_->mutex);
+    impl_->stopping = false;
+  }
+  impl_->context = std::make_unique<zmq::context_t>(1);
+  std::promise<std::string> bound;
+  std::future<std::string> endpoint = bound.get_future();
+  impl_->thread = std::thread([impl = impl_.get(), promise = std::move(bound)]() mutable {
+    impl->Run(std::move(promise));
+  });
+  try {
+    return endpoint.get();
+  } catch (...) {
+    impl_->thread.join();
+    impl_->context.reset();
+    throw;
+  }
+}
+
+void StreamPublisher::Stop() {
+  if (!impl_->thread.joinable()) return;
+  {
+    const std::lock_guard lock(impl_->mutex);
+    impl_->stopping = true;
+    impl_->queue.clear();
+    impl_->queued_bytes = 0;
+    impl_->latest_video.reset();
+  }
+  impl_->wake.notify_all();
+  impl_->context->shutdown();  // a send blocked inside ZeroMQ returns with ETERM
+  impl_->thread.join();
+  impl_->context.reset();
+}
+
+bool StreamPublisher::Publish(const Message& message) {
+  std::string topic = kapfix::v1::TopicFor(message);
+  if (topic.empty() || topic == "command") {
+    impl_->rejected.fetch_add(1);
+    return false;
+  }
+  std::unique_ptr<Message> copy(message.New());
+  copy->CopyFrom(message);
+  if (MutableHeader(*copy) == nullptr) {
+    impl_->rejected.fetch_add(1);
+    return false;
+  }
+  if (topic == kVideoTopic) {
+    {
+      const std::lock_guard lock(impl_->mutex);
+      if (impl_->latest_video != nullptr) impl_->video_dropped.fetch_add(1);
+      impl_->latest_video = std::move(copy);
+    }
+    impl_->wake.notify_one();
+    return true;
+  }
+  const std::size_t bytes = copy->ByteSizeLong();
+  {
+    const std::lock_guard lock(impl_->mutex);
+    if (impl_->queue.size() >= impl_->options.queue_messages ||
+        impl_->queued_bytes + bytes > impl_->options.queue_bytes) {
+      (topic == kTelemetryTopic ? impl_->telemetry_dropped : impl_->other_dropped).fetch_add(1);
+      return false;
+    }
+    impl_->queued_bytes += bytes;
+    impl_->queue.push_back(Pending{std::move(topic), std::move(copy), bytes});
+  }
+  impl_->wake.notify_one();
+  return true;
+}
+
+void StreamPublisher::SetVideoMinInterval(std::chrono::microseconds interval) {
+  {
+    const std::lock_guard lock(impl_->mutex);
+    impl_->video_min_interval = std::max(interval, std::chrono::microseconds(0));
+  }
+  impl_->wake.notify_one();
+}
+
+StreamPublisher::Counters StreamPublisher::counters() const {
+  Counters counters;
+  counters.telemetry_sent = impl_->telemetry_sent.load();
+  counters.telemetry_dropped = impl_->telemetry_dropped.load();
+  counters.video_sent = impl_->video_sent.load();
+  counters.video_dropped = impl_->video_dropped.load();
+  counters.other_sent = impl_->other_sent.load();
+  counters.other_dropped = impl_->other_dropped.load();
+  counters.heartbeats_sent = impl_->heartbeats_sent.load();
+  counters.rejected = impl_->rejected.load();
+  return counters;
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,85 @@
+#pragma once
+
+// The agent's streams (SPEC §4, §5): a PUB socket on its own thread, fed from any thread
+// through a queue, so the control loop never waits for the network. Publish() stamps nothing
+// itself: the publisher thread stamps each message (agent id, per-topic sequence, send time;
+// a capture time already set is kept) just before handing it to ZeroMQ, so sequence numbers
+// count what went on the wire and a gap seen by a station is a loss on the link. What never
+// reached the wire is counted here instead, for Telemetry.telemetry_dropped and
+// video_frames_dropped.
+//
+// - Video ("video"): only the latest frame waits; a newer one replaces it (counted as a
+//   stale drop), and at most one is sent per video_min_interval.
+// - Everything else: a FIFO bounded in messages and bytes. A full queue refuses the new
+//   message and counts it; ZeroMQ's own high-water mark never drops silently (XPUB_NODROP):
+//   a message it cannot take yet stays queued here and is retried.
+// - A Heartbeat is published every heartbeat_interval.
+
+#include <google/protobuf/message.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace kapfix::agent {
+
+struct StreamPublisherOptions {
+  // ZeroMQ endpoint to bind; "tcp://127.0.0.1:*" binds an ephemeral port (see Start()).
+  std::string bind_endpoint = "tcp://*:5556";
+  std::string agent_id = "kapfix-agent";
+  std::size_t queue_messages = 4096;                 // [count] non-video messages waiting, at most
+  std::size_t queue_bytes = std::size_t{64} << 20U;  // [bytes] and their serialized size
+  std::chrono::milliseconds heartbeat_interval{1000};
+  std::chrono::microseconds video_min_interval{0};  // [µs] 1 / largest video frame rate
+  int send_high_water_mark = 1000;                  // [messages] per subscriber, inside ZeroMQ
+  // [ms] ZeroMQ heartbeats (ZMTP PING): a subscriber that vanished without closing its TCP
+  // connection is dropped, so it stops holding back the others (XPUB_NODROP). The timeout is
+  // long because a subscriber answers a PING only once it has read everything queued before
+  // it: a slow but live station behind a backlog must not be cut off.
+  std::chrono::milliseconds zmtp_heartbeat_interval{1000};
+  std::chrono::milliseconds zmtp_heartbeat_timeout{10000};
+};
+
+class StreamPublisher {
+ public:
+  struct Counters {
+    std::uint64_t telemetry_sent = 0;     // [count] "telemetry" messages handed to ZeroMQ
+    std::uint64_t telemetry_dropped = 0;  // [count] refused: queue full
+    std::uint64_t video_sent = 0;         // [count]
+    std::uint64_t video_dropped = 0;      // [count] replaced by a newer frame before sending,
+                                          // or refused by ZeroMQ's high-water mark
+    std::uint64_t other_sent = 0;         // [count] every other topic
+    std::uint64_t other_dropped = 0;      // [count] refused: queue full
+    std::uint64_t heartbeats_sent = 0;    // [count]
+    std::uint64_t rejected = 0;           // [count] not a link message (no topic or header)
+  };
+
+  explicit StreamPublisher(StreamPublisherOptions options = {});
+  ~StreamPublisher();  // Stop()s
+  StreamPublisher(const StreamPublisher&) = delete;
+  StreamPublisher& operator=(const StreamPublisher&) = delete;
+
+  // Starts the thread, binds, and returns the bound endpoint (ZMQ_LAST_ENDPOINT). Throws
+  // std::runtime_error when binding fails or when already started.
+  std::string Start();
+  // Returns within about a millisecond; idempotent. What is still queued is discarded.
+  void Stop();
+
+  // Queues a copy of `message` (any type with a topic, e.g. Telemetry, VideoFrame, SliceReport,
+  // Photo, Log, AgentState). Thread-safe, never blocks on the network. False when the message
+  // was dropped or rejected, which the counters record. Messages queued before Start() wait.
+  bool Publish(const google::protobuf::Message& message);
+
+  // Thread-safe: e.g. when a station changes VideoSettings.fps.
+  void SetVideoMinInterval(std::chrono::microseconds interval);
+
+  Counters counters() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kapfix::agent

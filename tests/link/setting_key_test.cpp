@@ -1,0 +1,68 @@
+#include "tools/ctl/setting_key.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace kapfix::ctl {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(CtlSettingKeyTest, GainKeySetsThatGainOnly) {
+  const auto command = MakeSetCommand("p", "0.5", nullptr);
+  ASSERT_TRUE(command.has_value());
+  ASSERT_TRUE(command->has_set_gains());
+  EXPECT_FLOAT_EQ(command->set_gains().p(), 0.5F);
+  EXPECT_FALSE(command->set_gains().has_i());
+}
+
+TEST(CtlSettingKeyTest, EveryKeyBuildsACommand) {
+  // One readable value per kind of key.
+  for (const SettingKey& key : SettingKeys()) {
+    bool built = false;
+    for (const char* value : {"1", "on", "x", "p", "all", "green", "dc", "h23", "6mm"}) {
+      if (MakeSetCommand(key.name, value, nullptr)) {
+        built = true;
+        break;
+      }
+    }
+    EXPECT_TRUE(built) << key.name;
+  }
+}
+
+TEST(CtlSettingKeyTest, KeywordValueMapsToItsEnum) {
+  const auto command = MakeSetCommand("axis", "both", nullptr);
+  ASSERT_TRUE(command.has_value());
+  EXPECT_EQ(command->set_search().axis(), kapfix::v1::AXIS_BOTH);
+}
+
+TEST(CtlSettingKeyTest, UnknownKeyIsRefusedNamingIt) {
+  std::string error;
+  EXPECT_FALSE(MakeSetCommand("warp_speed", "9", &error).has_value());
+  EXPECT_THAT(error, HasSubstr("unknown key 'warp_speed'"));
+}
+
+TEST(CtlSettingKeyTest, TrailingGarbageInANumberIsRefused) {
+  std::string error;
+  EXPECT_FALSE(MakeSetCommand("gain", "6dB", &error).has_value());
+  EXPECT_THAT(error, HasSubstr("cannot read '6dB'"));
+}
+
+TEST(CtlSettingKeyTest, UnknownKeywordIsRefused) {
+  EXPECT_FALSE(MakeSetCommand("sampling", "sometimes", nullptr).has_value());
+}
+
+TEST(CtlSettingKeyTest, NegativeCountIsRefused) {
+  EXPECT_FALSE(MakeSetCommand("patch_size", "-100", nullptr).has_value());
+}
+
+TEST(CtlSettingKeyTest, NanParsesSoThatTheAgentRefusesIt) {
+  const auto command = MakeSetCommand("p", "nan", nullptr);
+  ASSERT_TRUE(command.has_value());
+  EXPECT_TRUE(std::isnan(command->set_gains().p()));
+}
+
+}  // namespace
+}  // namespace kapfix::ctl

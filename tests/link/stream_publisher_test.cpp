@@ -1,0 +1,209 @@
+#include "agent/server/stream_publisher.hpp"
+
+#include <google/protobuf/unknown_field_set.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "kapfix/v1/heartbeat.pb.h"
+#include "kapfix/v1/log.pb.h"
+#include "kapfix/v1/telemetry.pb.h"
+#include "kapfix/v1/video.pb.h"
+#include "tests/link/link_test_support.hpp"
+
+namespace kapfix::testing {
+namespace {
+
+using kapfix::agent::StreamPublisher;
+
+kapfix::v1::Telemetry TelemetryOfFrame(std::uint64_t frame) {
+  kapfix::v1::Telemetry telemetry;
+  telemetry.set_frame_number(frame);
+  return telemetry;
+}
+
+kapfix::v1::VideoFrame VideoOfFrame(std::uint64_t frame) {
+  kapfix::v1::VideoFrame video;
+  video.set_frame_number(frame);
+  video.set_jpeg(std::string(1000, 'j'));
+  return video;
+}
+
+// Waits until `done` holds or kWait passed.
+template <typename Predicate>
+bool WaitFor(Predicate done) {
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+TEST(StreamPublisherTest, TelemetryPublishedNTimesArrivesNTimesInOrderWithoutGaps) {
+  StreamPublisher publisher(TestPublisherOptions());
+  RawSubscriber subscriber(publisher.Start(), {"telemetry"});
+  ASSERT_TRUE(subscriber.Ready());
+  constexpr std::uint64_t kCount = 500;
+  for (std::uint64_t i = 0; i < kCount; ++i) ASSERT_TRUE(publisher.Publish(TelemetryOfFrame(i)));
+  for (std::uint64_t i = 0; i < kCount; ++i) {
+    const auto bytes = subscriber.Next("telemetry");
+    ASSERT_TRUE(bytes.has_value()) << "telemetry " << i << " never arrived";
+    kapfix::v1::Telemetry telemetry;
+    ASSERT_TRUE(telemetry.ParseFromString(*bytes));
+    EXPECT_EQ(telemetry.frame_number(), i);
+    EXPECT_EQ(telemetry.header().sequence(), i + 1);
+  }
+  EXPECT_EQ(publisher.counters().telemetry_sent, kCount);
+  EXPECT_EQ(publisher.counters().telemetry_dropped, 0U);
+}
+
+TEST(StreamPublisherTest, StampsAgentIdVersionAndSequenceButKeepsTheCaptureTime) {
+  StreamPublisher publisher(TestPublisherOptions());
+  RawSubscriber subscriber(publisher.Start(), {"telemetry"});
+  ASSERT_TRUE(subscriber.Ready());
+  kapfix::v1::Telemetry telemetry;
+  telemetry.mutable_header()->set_capture_time_us(123456);
+  publisher.Publish(telemetry);
+  const auto bytes = subscriber.Next("telemetry");
+  ASSERT_TRUE(bytes.has_value());
+  kapfix::v1::Telemetry received;
+  ASSERT_TRUE(received.ParseFromString(*bytes));
+  EXPECT_EQ(received.header().capture_time_us(), 123456);
+  EXPECT_EQ(received.header().agent_id(), kAgentId);
+  EXPECT_EQ(received.header().protocol_version(), kapfix::v1::kProtocolVersion);
+  EXPECT_EQ(received.header().sequence(), 1U);
+  EXPECT_GT(received.header().send_time_us(), 123456);
+}
+
+TEST(StreamPublisherTest, SequencesArePerTopic) {
+  StreamPublisher publisher(TestPublisherOptions());
+  RawSubscriber subscriber(publisher.Start(), {"telemetry", "log"});
+  ASSERT_TRUE(subscriber.Ready());
+  publisher.Publish(TelemetryOfFrame(0));
+  publisher.Publish(kapfix::v1::Log());
+  publisher.Publish(TelemetryOfFrame(1));
+  kapfix::v1::Log log;
+  ASSERT_TRUE(log.ParseFromString(subscriber.Next("log").value_or("")));
+  EXPECT_EQ(log.header().sequence(), 1U);
+  // The log was read past the first telemetry; the second one carries sequence 2.
+  kapfix::v1::Telemetry telemetry;
+  ASSERT_TRUE(telemetry.ParseFromString(subscriber.Next("telemetry").value_or("")));
+  EXPECT_EQ(telemetry.header().sequence(), 2U);
+}
+
+TEST(StreamPublisherTest, VideoFloodKeepsOnlyTheLatestFrameAndCountsTheDrops) {
+  auto options = TestPublisherOptions();
+  options.video_min_interval = std::chrono::milliseconds(300);
+  StreamPublisher publisher(options);
+  RawSubscriber subscriber(publisher.Start(), {"video"});
+  ASSERT_TRUE(subscriber.Ready());
+  constexpr std::uint64_t kFrames = 100;
+  for (std::uint64_t i = 0; i < kFrames; ++i) publisher.Publish(VideoOfFrame(i));
+  ASSERT_TRUE(WaitFor([&] {
+    const auto counters = publisher.counters();
+    return counters.video_sent + counters.video_dropped == kFrames;
+  }));
+  std::uint64_t last = 0;
+  std::uint64_t received = 0;
+  while (const auto bytes = subscriber.Next("video", std::chrono::milliseconds(200))) {
+    kapfix::v1::VideoFrame frame;
+    ASSERT_TRUE(frame.ParseFromString(*bytes));
+    if (received > 0) {
+      EXPECT_GT(frame.frame_number(), last) << "a stale frame was sent";
+    }
+    last = frame.frame_number();
+    ++received;
+  }
+  EXPECT_EQ(last, kFrames - 1) << "the latest frame must be sent";
+  EXPECT_EQ(received, publisher.counters().video_sent);
+  EXPECT_GE(publisher.counters().video_dropped, kFrames - 3);
+}
+
+TEST(StreamPublisherTest, FullQueueRefusesTelemetryAndCountsIt) {
+  auto options = TestPublisherOptions();
+  options.queue_messages = 10;
+  StreamPublisher publisher(options);  // not started: nothing drains the queue
+  int accepted = 0;
+  for (int i = 0; i < 15; ++i) accepted += publisher.Publish(TelemetryOfFrame(i)) ? 1 : 0;
+  EXPECT_EQ(accepted, 10);
+  EXPECT_EQ(publisher.counters().telemetry_dropped, 5U);
+}
+
+TEST(StreamPublisherTest, QueueIsBoundedInBytesToo) {
+  auto options = TestPublisherOptions();
+  options.queue_bytes = 5000;
+  StreamPublisher publisher(options);
+  kapfix::v1::Log big;
+  big.set_text(std::string(2000, 'l'));
+  EXPECT_TRUE(publisher.Publish(big));
+  EXPECT_TRUE(publisher.Publish(big));
+  EXPECT_FALSE(publisher.Publish(big));
+  EXPECT_EQ(publisher.counters().other_dropped, 1U);
+}
+
+TEST(StreamPublisherTest, TelemetryIsNotLostWhenASubscriberFallsBehind) {
+  // Small high-water marks on both sides and messages far larger than the TCP buffers: ZeroMQ
+  // PUB would drop; with XPUB_NODROP the messages wait in the publisher's queue instead.
+  auto options = TestPublisherOptions();
+  options.send_high_water_mark = 2;
+  StreamPublisher publisher(options);
+  RawSubscriber subscriber(publisher.Start(), {"telemetry"}, /*receive_high_water_mark=*/2);
+  ASSERT_TRUE(subscriber.Ready());
+  constexpr std::uint64_t kCount = 200;
+  for (std::uint64_t i = 0; i < kCount; ++i) {
+    kapfix::v1::Telemetry telemetry = TelemetryOfFrame(i);
+    // Padding in an unknown field keeps it a valid Telemetry of ~100 kB.
+    telemetry.GetReflection()
+        ->MutableUnknownFields(&telemetry)
+        ->AddLengthDelimited(1000, std::string(100'000, 'p'));
+    ASSERT_TRUE(publisher.Publish(telemetry));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the pipes fill up
+  for (std::uint64_t i = 0; i < kCount; ++i) {
+    const auto bytes = subscriber.Next("telemetry");
+    ASSERT_TRUE(bytes.has_value())
+        << "telemetry " << i << " lost; " << publisher.counters().telemetry_sent << " sent";
+    kapfix::v1::Telemetry received;
+    ASSERT_TRUE(received.ParseFromString(*bytes));
+    ASSERT_EQ(received.frame_number(), i);
+  }
+  EXPECT_EQ(publisher.counters().telemetry_dropped, 0U);
+}
+
+TEST(StreamPublisherTest, HeartbeatsArriveEveryInterval) {
+  StreamPublisher publisher(TestPublisherOptions());
+  RawSubscriber subscriber(publisher.Start(), {});
+  ASSERT_TRUE(subscriber.Ready());
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t previous = 0;
+  for (int i = 0; i < 4; ++i) {
+    kapfix::v1::Heartbeat heartbeat;
+    ASSERT_TRUE(heartbeat.ParseFromString(subscriber.Next("heartbeat").value_or("")));
+    EXPECT_EQ(heartbeat.interval_ms(), 50U);
+    EXPECT_GT(heartbeat.header().sequence(), previous);
+    previous = heartbeat.header().sequence();
+  }
+  // Four heartbeats at 50 ms: about 150-200 ms, far from the 3 s wait.
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(1000));
+}
+
+TEST(StreamPublisherTest, MessageWithoutATopicIsRejected) {
+  StreamPublisher publisher(TestPublisherOptions());
+  EXPECT_FALSE(publisher.Publish(kapfix::v1::Header()));
+  EXPECT_EQ(publisher.counters().rejected, 1U);
+}
+
+TEST(StreamPublisherTest, StopReturnsPromptlyWithMessagesQueued) {
+  StreamPublisher publisher(TestPublisherOptions());
+  publisher.Start();
+  for (int i = 0; i < 1000; ++i) publisher.Publish(TelemetryOfFrame(i));
+  const auto start = std::chrono::steady_clock::now();
+  publisher.Stop();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(500));
+}
+
+}  // namespace
+}  // namespace kapfix::testing
