@@ -118,8 +118,7 @@ void WriteFlightReport(const std::string& dir, const nlohmann::json& summary,
     series.push_back(vx);
     series.push_back(vy);
   }
-  const cv::Mat png =
-      plot::RenderLinePlot("displacement from the reference", "frame", "px", series, {1000, 420});
+  const cv::Mat png = plot::RenderLinePlot("displacement [px]", "frame", "px", series, {1000, 420});
   std::vector<unsigned char> bytes;
   if (!cv::imencode(".png", png, bytes)) {
     throw std::runtime_error("cannot encode '" + (out / "displacement.png").string() + "'");
