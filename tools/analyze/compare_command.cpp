@@ -6,14 +6,18 @@
 
 #include "common/analysis/kruskal_wallis.hpp"
 #include "common/evaluation/swing_evaluation.hpp"
+#include "common/plot/line_plot.hpp"
 #include "common/selection/slice_geometry.hpp"
 #include "tools/analyze/command.hpp"
-#include "tools/analyze/line_plot.hpp"
 #include "tools/analyze/progress_reporter.hpp"
 #include "tools/analyze/swing_setup.hpp"
 
 namespace kapfix::analyze {
 namespace {
+
+using plot::PlotSeries;
+using plot::RenderLinePlot;
+using plot::RenderSmallMultiples;
 
 struct CompareArgs {
   SwingArgs swing;
@@ -39,8 +43,8 @@ nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
   options.sampling = MakeSampling(args.swing);
   options.search = MakeSearchOptions(args.swing);
   const SwingRecording recording = RecordSwingWithProgress(args.swing);
-  const cv::Rect patch =
-      SlicePatch(recording.planes.front().size(), args.where.slices, args.where.slice, args.swing.patch);
+  const cv::Rect patch = SlicePatch(recording.planes.front().size(), args.where.slices,
+                                    args.where.slice, args.swing.patch);
 
   ProgressReporter progress("compare");
   nlohmann::json per_strategy = nlohmann::json::array();
@@ -73,13 +77,11 @@ nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
   report.WriteCsv("compare.csv", header, abs_errors);
   report.WritePng("compare.png",
                   RenderLinePlot("errors per strategy", "frame", "error [px]", series));
-  return {{"image", args.swing.image},
-          {"frames", static_cast<int>(recording.planes.size())},
-          {"slice", args.where.slice},
-          {"strategies", per_strategy},
-          {"kruskal_wallis_h", kw.h_corrected},
-          {"p_value", kw.p_value},
-          {"errors_differ", kw.p_value < 0.05}};
+  return {
+      {"image", args.swing.image},          {"frames", static_cast<int>(recording.planes.size())},
+      {"slice", args.where.slice},          {"strategies", per_strategy},
+      {"kruskal_wallis_h", kw.h_corrected}, {"p_value", kw.p_value},
+      {"errors_differ", kw.p_value < 0.05}};
 }
 
 }  // namespace

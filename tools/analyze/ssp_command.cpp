@@ -5,14 +5,18 @@
 
 #include "common/analysis/spearman.hpp"
 #include "common/evaluation/swing_evaluation.hpp"
+#include "common/plot/line_plot.hpp"
 #include "common/selection/slice_selection.hpp"
 #include "tools/analyze/command.hpp"
-#include "tools/analyze/line_plot.hpp"
 #include "tools/analyze/progress_reporter.hpp"
 #include "tools/analyze/swing_setup.hpp"
 
 namespace kapfix::analyze {
 namespace {
+
+using plot::PlotSeries;
+using plot::RenderLinePlot;
+using plot::RenderSmallMultiples;
 
 struct SspArgs {
   SwingArgs swing;

@@ -3,14 +3,18 @@
 #include <memory>
 
 #include "common/evaluation/swing_evaluation.hpp"
+#include "common/plot/line_plot.hpp"
 #include "common/selection/slice_geometry.hpp"
 #include "tools/analyze/command.hpp"
-#include "tools/analyze/line_plot.hpp"
 #include "tools/analyze/progress_reporter.hpp"
 #include "tools/analyze/swing_setup.hpp"
 
 namespace kapfix::analyze {
 namespace {
+
+using plot::PlotSeries;
+using plot::RenderLinePlot;
+using plot::RenderSmallMultiples;
 
 struct SwingCommandArgs {
   SwingArgs swing;
@@ -43,11 +47,11 @@ nlohmann::json RunSwing(const SwingCommandArgs& args, ReportWriter& report) {
   }
   report.WriteCsv("swing.csv", {"frame", "true_px", "measured_px", "error_px", "search_us"},
                   {frame_index, truth, measured, e.errors_px, e.search_us});
-  report.WritePng(
-      "swing.png",
-      RenderLinePlot("open-loop swing, " + args.strategy + ", slice " + std::to_string(args.where.slice),
-                     "frame", "displacement [px]",
-                     {{"true", truth, {40, 160, 40}}, {"measured", measured, {200, 80, 20}}}));
+  report.WritePng("swing.png", RenderLinePlot("open-loop swing, " + args.strategy + ", slice " +
+                                                  std::to_string(args.where.slice),
+                                              "frame", "displacement [px]",
+                                              {{"true", truth, {40, 160, 40}},
+                                               {"measured", measured, {200, 80, 20}}}));
   report.WritePng("swing_error.png", RenderLinePlot("error (measured - true)", "frame",
                                                     "error [px]", {{"error", e.errors_px}}));
   return {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace kapfix::analyze {
+namespace kapfix::plot {
 
 struct PlotSeries {
   std::string label;
@@ -23,4 +23,4 @@ cv::Mat RenderLinePlot(const std::string& title, const std::string& x_label,
 cv::Mat RenderSmallMultiples(const std::string& title, const std::vector<PlotSeries>& panels,
                              int columns = 3, cv::Size panel = {300, 160});
 
-}  // namespace kapfix::analyze
+}  // namespace kapfix::plot

@@ -1,11 +1,11 @@
-#include "tools/analyze/line_plot.hpp"
+#include "common/plot/line_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
-namespace kapfix::analyze {
+namespace kapfix::plot {
 namespace {
 
 struct Range {
@@ -118,4 +118,4 @@ cv::Mat RenderSmallMultiples(const std::string& title, const std::vector<PlotSer
   return canvas;
 }
 
-}  // namespace kapfix::analyze
+}  // namespace kapfix::plot

@@ -1,0 +1,65 @@
+#include "agent/capture/sim_frame_source.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace kapfix::agent {
+namespace {
+
+constexpr std::size_t kTruthFrames = 1024;
+
+}  // namespace
+
+SimFrameSource::SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps)
+    : platform_(std::move(platform)), fps_(fps) {
+  if (!platform_) throw std::invalid_argument("SimFrameSource: no platform");
+  if (!std::isfinite(fps_) || fps_ <= 0) throw std::invalid_argument("SimFrameSource: fps ≤ 0");
+}
+
+bool SimFrameSource::Open(std::string* /*error*/) {
+  open_ = true;
+  return true;
+}
+
+bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
+  if (!open_) {
+    if (error) *error = Describe() + ": not open";
+    return false;
+  }
+  if (next_index_ > 0) platform_->Step();
+  const SimulatedFrame captured = platform_->CaptureFrame();
+  const cv::Point2d offset = platform_->ViewOffset();
+  frame->image = captured.image;
+  frame->index = next_index_;
+  frame->capture_time_us =
+      static_cast<std::int64_t>(std::llround(static_cast<double>(next_index_) * 1e6 / fps_));
+  {
+    std::lock_guard lock(truth_mutex_);
+    truth_.emplace_back(next_index_, offset);
+    if (truth_.size() > kTruthFrames) truth_.pop_front();
+  }
+  ++next_index_;
+  return true;
+}
+
+bool SimFrameSource::SetGain(double /*gain_db*/, std::string* /*error*/) { return true; }
+
+bool SimFrameSource::SetExposure(double /*exposure_us*/, std::string* /*error*/) { return true; }
+
+std::string SimFrameSource::Describe() const {
+  const cv::Size size = platform_->options().camera.frame_size;
+  const bool boat = platform_->options().motion == SimulatedPlatformOptions::Motion::kBoat;
+  return "sim camera " + std::to_string(size.width) + "x" + std::to_string(size.height) + " (" +
+         (boat ? "boat" : "kite") + ")";
+}
+
+std::optional<cv::Point2d> SimFrameSource::ViewOffset(std::uint64_t index) const {
+  std::lock_guard lock(truth_mutex_);
+  for (auto it = truth_.rbegin(); it != truth_.rend(); ++it) {
+    if (it->first == index) return it->second;
+    if (it->first < index) break;
+  }
+  return std::nullopt;
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "agent/capture/frame_source.hpp"
+#include "common/sim/simulated_platform.hpp"
+
+namespace kapfix::agent {
+
+// The simulated scene camera of SPEC §3 in closed loop: a FrameSource over a SimulatedPlatform
+// that SimServoDriver points. Grab waits for the next frame, as a camera does: it advances the
+// platform one frame (the servos step, the swing moves on) and returns that frame; the very
+// first Grab returns frame 0 without advancing. A command sent after frame t was grabbed
+// therefore acts from step t → t + 1 on, exactly as in EvaluateClosedLoop.
+//
+// Frame times are simulated (index / fps), not wall-clock, so a flight is deterministic.
+// The simulation's truth — the view's residual offset from frame 0 — is kept for the last
+// frames and can be asked for by index (telemetry and the closed-loop figures use it).
+class SimFrameSource : public FrameSource {
+ public:
+  // Throws std::invalid_argument for a null platform or fps ≤ 0.
+  SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps);
+
+  bool Open(std::string* error) override;
+  bool Grab(CapturedFrame* frame, std::string* error) override;
+  // The simulated camera has no gain or exposure: accepted and ignored.
+  bool SetGain(double gain_db, std::string* error) override;
+  bool SetExposure(double exposure_us, std::string* error) override;
+  std::string Describe() const override;
+
+  // [px] SimulatedPlatform::ViewOffset of frame `index` while it was captured; nullopt when
+  // the frame is older than the last 1024 or not captured yet. Thread-safe.
+  std::optional<cv::Point2d> ViewOffset(std::uint64_t index) const;
+
+ private:
+  std::shared_ptr<SimulatedPlatform> platform_;
+  double fps_;
+  bool open_ = false;
+  std::uint64_t next_index_ = 0;
+  mutable std::mutex truth_mutex_;
+  std::deque<std::pair<std::uint64_t, cv::Point2d>> truth_;
+};
+
+}  // namespace kapfix::agent

@@ -1,0 +1,153 @@
+// kapfix-agent: the platform's program (SPEC §4). Reads one configuration file plus flags;
+// with no hardware configured it flies in simulation and says so.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "agent/agent.hpp"
+#include "agent/config/agent_config.hpp"
+#include "agent/pipeline/flight_report.hpp"
+
+namespace {
+
+constexpr const char* kDefaultScene = "/usr/share/doc/opencv-doc/examples/data/aero1.jpg";
+
+volatile std::sig_atomic_t g_stop_requested = 0;
+
+extern "C" void OnSignal(int /*signal*/) { g_stop_requested = 1; }
+
+int Fail(const std::string& message, int code) {
+  std::fprintf(stderr, "kapfix-agent: %s\n", message.c_str());
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace kapfix::agent;
+  spdlog::set_default_logger(spdlog::stderr_color_mt("kapfix-agent"));
+
+  CLI::App app{"kapfix-agent: keeps the camera locked on a view while the platform swings"};
+  std::string config_path;
+  bool force_sim = false;
+  std::string scene;
+  std::string motion;
+  std::string controller;
+  std::optional<double> duration_s;
+  std::optional<std::uint64_t> frames;
+  std::string report_dir;
+  std::optional<std::uint32_t> seed;
+  app.add_option("--config", config_path,
+                 "configuration file (resources/README.md); default: built-in defaults, which "
+                 "fly in simulation");
+  app.add_flag("--sim", force_sim, "simulated camera and servos, whatever the config says");
+  app.add_option("--scene", scene,
+                 std::string("simulation: scene photo (default ") + kDefaultScene + ")");
+  app.add_option("--motion", motion, "simulation: platform motion")
+      ->check(CLI::IsMember({"kite", "boat"}));
+  app.add_option("--controller", controller, "controller (overrides the config)")
+      ->check(CLI::IsMember({"p", "pid", "predictive"}));
+  auto* duration_opt =
+      app.add_option("--duration", duration_s, "seconds of flight at the camera's fps, then stop")
+          ->check(CLI::PositiveNumber);
+  app.add_option("--frames", frames, "frames to process, then stop")
+      ->check(CLI::PositiveNumber)
+      ->excludes(duration_opt);
+  app.add_option("--report", report_dir,
+                 "write DIR/summary.json, DIR/telemetry.csv, DIR/displacement.png at the end");
+  app.add_option("--seed", seed, "simulation seed (overrides the config)");
+  CLI11_PARSE(app, argc, argv);
+
+  AgentConfig config;
+  if (config_path.empty()) {
+    config = BuiltInConfig(motion.empty() ? MotionKind::kKite : *ParseMotionKind(motion));
+  } else {
+    std::string error;
+    if (!LoadAgentConfig(config_path, &config, &error)) return Fail(error, 2);
+    if (!motion.empty()) config.simulation.motion = *ParseMotionKind(motion);
+  }
+  if (!controller.empty()) config.controller.kind = *ParseControllerKind(controller);
+  if (seed) config.simulation.seed = *seed;
+  if (!scene.empty()) config.simulation.scene = scene;
+  if (config.simulation.scene.empty()) config.simulation.scene = kDefaultScene;
+
+  AgentOptions options;
+  options.simulate = force_sim;
+  if (frames) options.frames = *frames;
+  if (duration_s) {
+    options.frames = static_cast<std::uint64_t>(std::llround(*duration_s * config.camera.fps));
+    if (options.frames == 0) options.frames = 1;
+  }
+
+  std::unique_ptr<Agent> agent;
+  try {
+    agent = std::make_unique<Agent>(config, options);
+  } catch (const std::exception& e) {
+    return Fail(e.what(), 1);
+  }
+  if (agent->simulated()) {
+    spdlog::info("{}: running in simulation (scene {}, {} motion){}",
+                 force_sim ? "--sim" : "no hardware configured", config.simulation.scene,
+                 ToString(config.simulation.motion),
+                 options.frames > 0 ? ", " + std::to_string(options.frames) + " frames" : "");
+  }
+  spdlog::info("{}", agent->Describe());
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  std::atomic<bool> done{false};
+  std::thread stopper([&agent, &done] {
+    while (!done) {
+      if (g_stop_requested) {
+        agent->Stop();
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  const PipelineStats stats = agent->Run();
+  done = true;
+  stopper.join();
+
+  const auto records = agent->telemetry().records();
+  const FlightFigures figures = ComputeFlightFigures(records, stats);
+  nlohmann::json summary = {
+      {"rms_error_px", std::isfinite(figures.rms_error_px) ? nlohmann::json(figures.rms_error_px)
+                                                           : nlohmann::json(nullptr)},
+      {"lock_lost_pct", figures.lock_lost_pct},
+      {"frames", figures.frames},
+      {"fps", figures.fps},
+      {"loop_latency_p50_ms", figures.loop_latency_p50_ms},
+      {"loop_latency_p99_ms", figures.loop_latency_p99_ms},
+      {"rss_mb", figures.rss_mb},
+      {"controller", std::string(ToString(config.controller.kind))},
+      {"scene", agent->simulated() ? config.simulation.scene : std::string()},
+      {"motion", agent->simulated() ? std::string(ToString(config.simulation.motion)) : "none"},
+      {"simulated", agent->simulated()},
+      {"dropped_frames", stats.dropped},
+      {"watchdog_stalls", stats.watchdog_stalls},
+      {"servo_errors", stats.servo_errors},
+  };
+  std::cout << summary.dump(2) << std::endl;
+  if (!report_dir.empty()) {
+    try {
+      WriteFlightReport(report_dir, summary, records);
+    } catch (const std::exception& e) {
+      return Fail(e.what(), 1);
+    }
+  }
+  if (!stats.error.empty()) return Fail(stats.error, 1);
+  return 0;
+}

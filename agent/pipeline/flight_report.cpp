@@ -1,0 +1,130 @@
+#include "agent/pipeline/flight_report.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "common/plot/line_plot.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+double Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) - 1;
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(std::min(k, values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
+void WriteAtomically(const std::filesystem::path& target, const std::string& bytes) {
+  const std::filesystem::path temp = target.string() + ".part";
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      const std::string reason = std::strerror(errno);
+      out.close();
+      std::filesystem::remove(temp);
+      throw std::runtime_error("cannot write '" + target.string() + "': " + reason);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, target, ec);
+  if (ec) {
+    std::filesystem::remove(temp);
+    throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
+  }
+}
+
+}  // namespace
+
+FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
+                                   const PipelineStats& stats) {
+  FlightFigures f;
+  f.frames = records.size();
+  f.fps = stats.wall_s > 0 ? static_cast<double>(stats.processed) / stats.wall_s : 0.0;
+  std::vector<double> latency;
+  double sum_sq = 0;
+  std::size_t with_truth = 0, after_reference = 0, lost = 0;
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    const TelemetryRecord& r = records[i];
+    ++after_reference;
+    lost += r.lock_lost ? 1 : 0;
+    latency.push_back(r.loop_latency_ms);
+    if (r.view_offset_x_px && r.view_offset_y_px) {
+      sum_sq +=
+          *r.view_offset_x_px * *r.view_offset_x_px + *r.view_offset_y_px * *r.view_offset_y_px;
+      ++with_truth;
+    }
+  }
+  f.rms_error_px = with_truth > 0 ? std::sqrt(sum_sq / static_cast<double>(with_truth))
+                                  : std::numeric_limits<double>::quiet_NaN();
+  f.lock_lost_pct = after_reference > 0
+                        ? 100.0 * static_cast<double>(lost) / static_cast<double>(after_reference)
+                        : 0.0;
+  f.loop_latency_p50_ms = Percentile(latency, 0.50);
+  f.loop_latency_p99_ms = Percentile(latency, 0.99);
+  f.rss_mb = PeakRssMb();
+  return f;
+}
+
+double PeakRssMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) {
+      try {
+        return std::stod(line.substr(6)) / 1024.0;  // kB
+      } catch (const std::exception&) {
+        return 0.0;
+      }
+    }
+  }
+  return 0.0;
+}
+
+void WriteFlightReport(const std::string& dir, const nlohmann::json& summary,
+                       const std::vector<TelemetryRecord>& records) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    throw std::runtime_error("cannot create report folder '" + dir +
+                             "': " + (ec ? ec.message() : "not a folder"));
+  }
+  const std::filesystem::path out(dir);
+  WriteAtomically(out / "telemetry.csv", TelemetryRecorder::ToCsv(records));
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  plot::PlotSeries mx{"measured x", {}, cv::Scalar(200, 80, 20)};
+  plot::PlotSeries my{"measured y", {}, cv::Scalar(20, 140, 20)};
+  plot::PlotSeries vx{"true view x", {}, cv::Scalar(20, 20, 220)};
+  plot::PlotSeries vy{"true view y", {}, cv::Scalar(180, 40, 180)};
+  for (const TelemetryRecord& r : records) {
+    mx.y.push_back(r.found ? r.displacement_x_px : nan);
+    my.y.push_back(r.found ? r.displacement_y_px : nan);
+    vx.y.push_back(r.view_offset_x_px.value_or(nan));
+    vy.y.push_back(r.view_offset_y_px.value_or(nan));
+  }
+  std::vector<plot::PlotSeries> series = {mx, my};
+  if (std::any_of(vx.y.begin(), vx.y.end(), [](double v) { return std::isfinite(v); })) {
+    series.push_back(vx);
+    series.push_back(vy);
+  }
+  const cv::Mat png = plot::RenderLinePlot("displacement [px]", "frame", "px", series, {1000, 420});
+  std::vector<unsigned char> bytes;
+  if (!cv::imencode(".png", png, bytes)) {
+    throw std::runtime_error("cannot encode '" + (out / "displacement.png").string() + "'");
+  }
+  WriteAtomically(out / "displacement.png", std::string(bytes.begin(), bytes.end()));
+  WriteAtomically(out / "summary.json", summary.dump(2) + "\n");
+}
+
+}  // namespace kapfix::agent

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "agent/pipeline/pipeline.hpp"
+#include "agent/pipeline/telemetry_recorder.hpp"
+
+namespace kapfix::agent {
+
+// The closed-loop figures of one flight (issue 3). Every figure is over the frames after the
+// reference frame (the first one), which is 0 px by construction.
+struct FlightFigures {
+  double rms_error_px = 0;   // [px] RMS of |view offset| (simulation truth); NaN without truth
+  double lock_lost_pct = 0;  // [%] frames reported lock lost
+  std::uint64_t frames = 0;  // control steps, reference frame included
+  double fps = 0;            // frames processed per wall-clock second
+  double loop_latency_p50_ms = 0;  // [ms]
+  double loop_latency_p99_ms = 0;  // [ms]
+  double rss_mb = 0;               // [MB] peak resident set (VmHWM), 0 when unknown
+};
+
+FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
+                                   const PipelineStats& stats);
+
+// [MB] VmHWM of /proc/self/status; 0 when it cannot be read.
+double PeakRssMb();
+
+// Writes DIR/summary.json (`summary`), DIR/telemetry.csv and DIR/displacement.png, each to a
+// temporary file renamed into place. Creates DIR. Throws std::runtime_error naming the file.
+void WriteFlightReport(const std::string& dir, const nlohmann::json& summary,
+                       const std::vector<TelemetryRecord>& records);
+
+}  // namespace kapfix::agent

@@ -1,0 +1,102 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "agent/capture/frame_source.hpp"
+#include "agent/pipeline/latest_frame_slot.hpp"
+#include "agent/pipeline/telemetry_recorder.hpp"
+#include "agent/servo/limited_servo_driver.hpp"
+#include "common/fixation/fixation_loop.hpp"
+
+namespace kapfix::agent {
+
+// What the control thread runs on each frame: FixationLoop in the agent, anything in tests.
+class FrameProcessor {
+ public:
+  virtual ~FrameProcessor() = default;
+  virtual void SetReference(const cv::Mat& frame_bgr) = 0;
+  virtual FixationLoop::Step Process(const cv::Mat& frame_bgr, const ServoTargets& current,
+                                     double dt_s) = 0;
+};
+
+// FixationLoop as a FrameProcessor.
+class FixationProcessor : public FrameProcessor {
+ public:
+  explicit FixationProcessor(FixationLoop& loop) : loop_(loop) {}
+  void SetReference(const cv::Mat& frame_bgr) override { loop_.SetReference(frame_bgr); }
+  FixationLoop::Step Process(const cv::Mat& frame_bgr, const ServoTargets& current,
+                             double dt_s) override {
+    return loop_.Process(frame_bgr, current, dt_s);
+  }
+
+ private:
+  FixationLoop& loop_;
+};
+
+struct PipelineOptions {
+  // Frames to process, then stop; 0 = until Stop() or the camera fails.
+  std::uint64_t frames = 0;
+  // Simulation: the capture thread grabs frame t + 1 only after the control thread finished
+  // frame t, so no frame is dropped and a flight is deterministic whatever the machine's
+  // speed. Hardware runs free: the camera sets the pace and stale frames are dropped.
+  bool lock_step = false;
+  int watchdog_ms = 500;  // [ms] servos park when no control step completed for this long
+  // [frames] from the capture of a frame to the first frame that shows the command sent for
+  // it (1 + the servos' latency). The angles a frame was seen through are taken as the
+  // command sent that many frames earlier (park before the first command).
+  int actuation_delay_frames = 2;
+  double default_frame_period_s = 1.0 / 30;  // [s] dt for the first frame
+  // Simulation truth for telemetry: the view's residual offset of a frame, by index.
+  std::function<std::optional<cv::Point2d>(std::uint64_t)> view_offset;
+};
+
+struct PipelineStats {
+  std::uint64_t processed = 0;     // control steps run
+  std::uint64_t dropped = 0;       // stale frames replaced before control took them
+  std::uint64_t grab_errors = 0;   // failed Grabs
+  std::uint64_t servo_errors = 0;  // refused or failed servo commands
+  std::uint64_t watchdog_stalls = 0;
+  double wall_s = 0;  // [s] from start to the last step
+  std::string error;  // why the run ended early, if it did
+};
+
+// The agent's threads (SPEC §4): a capture thread hands the latest frame to a control thread,
+// which runs the FrameProcessor (the first frame becomes the reference) and commands the
+// servos through LimitedServoDriver; a Watchdog parks them when the control loop stalls; every
+// step is recorded. The pipeline does not know which camera or servos it drives.
+class Pipeline {
+ public:
+  // The driver must be open. Source, driver, processor and recorder must outlive the pipeline.
+  Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcessor& processor,
+           TelemetryRecorder& telemetry, PipelineOptions options);
+
+  // Runs until options.frames are processed, Stop(), or a camera failure; then parks the
+  // servos. Blocks; call once.
+  PipelineStats Run();
+  // From any thread: ends Run soon.
+  void Stop() { stop_ = true; }
+
+ private:
+  void CaptureThread(PipelineStats* stats);
+  void ControlThread(PipelineStats* stats, const std::function<void()>& kick);
+  ServoTargets SeenThrough(std::uint64_t index) const;
+
+  FrameSource& source_;
+  LimitedServoDriver& servos_;
+  FrameProcessor& processor_;
+  TelemetryRecorder& telemetry_;
+  PipelineOptions options_;
+  LatestFrameSlot slot_;
+  std::atomic<bool> stop_{false};
+  std::mutex servo_mutex_;  // LimitedServoDriver is not thread-safe: control vs watchdog
+  std::deque<std::pair<std::uint64_t, ServoTargets>> commanded_;  // control thread only
+};
+
+}  // namespace kapfix::agent

@@ -1,0 +1,143 @@
+// The pipeline's threads with fakes: free-running capture drops stale frames and counts them;
+// the watchdog parks the servos when a control step stalls.
+#include "agent/pipeline/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "agent/capture/fake_frame_source.hpp"
+#include "agent/servo/fake_servo_driver.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+// Holds targets at `pan_deg`; sleeps `stall` on frame `stall_at` and `per_frame` on every frame.
+class ScriptedProcessor : public FrameProcessor {
+ public:
+  double pan_deg = 5.0;
+  std::uint64_t stall_at = ~0ull;
+  std::chrono::milliseconds stall{0};
+  std::chrono::milliseconds per_frame{0};
+  std::uint64_t calls = 0;
+
+  void SetReference(const cv::Mat& /*frame*/) override {}
+  FixationLoop::Step Process(const cv::Mat& /*frame*/, const ServoTargets& /*current*/,
+                             double /*dt_s*/) override {
+    if (calls == stall_at) std::this_thread::sleep_for(stall);
+    std::this_thread::sleep_for(per_frame);
+    ++calls;
+    FixationLoop::Step step;
+    step.match.found = true;
+    step.targets = {pan_deg, 0.0};
+    return step;
+  }
+};
+
+struct Rig {
+  FakeFrameSource* source = nullptr;
+  FakeServoDriver* fake = nullptr;
+  std::unique_ptr<FakeFrameSource> source_owner;
+  std::unique_ptr<LimitedServoDriver> servos;
+  TelemetryRecorder telemetry;
+
+  Rig() {
+    source_owner = std::make_unique<FakeFrameSource>(
+        std::vector<cv::Mat>{cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(1))});
+    source = source_owner.get();
+    auto backend = std::make_unique<FakeServoDriver>();
+    fake = backend.get();
+    // A clock that moves 1 s per reading: the rate limit never holds a move back, so what the
+    // test sees is the pipeline's doing.
+    auto ticks = std::make_shared<std::atomic<std::int64_t>>(0);
+    servos = std::make_unique<LimitedServoDriver>(std::move(backend), ServoLimits{}, ServoLimits{},
+                                                  [ticks] { return (*ticks += 1'000'000); });
+    std::string error;
+    EXPECT_TRUE(source->Open(&error)) << error;
+    EXPECT_TRUE(servos->Open(&error)) << error;
+  }
+};
+
+TEST(PipelineTest, FreeRunningCaptureDropsStaleFramesAndCountsThem) {
+  Rig rig;
+  ScriptedProcessor processor;
+  processor.per_frame = std::chrono::milliseconds(2);  // slower than the fake camera
+  PipelineOptions options;
+  options.frames = 30;
+  options.lock_step = false;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 30u);
+  EXPECT_GT(stats.dropped, 0u);
+  // Every grabbed frame was either processed or dropped: indices skip exactly the drops.
+  const auto records = rig.telemetry.records();
+  ASSERT_EQ(records.size(), 30u);
+  std::uint64_t skipped = 0;
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    ASSERT_GT(records[i].index, records[i - 1].index);
+    skipped += records[i].index - records[i - 1].index - 1;
+  }
+  EXPECT_GT(skipped, 0u);
+  // Frames skipped between processed ones were all counted (more may have been dropped after
+  // the 30th, before the capture thread saw the stop).
+  EXPECT_LE(skipped, stats.dropped);
+}
+
+TEST(PipelineTest, LockStepDropsNothing) {
+  Rig rig;
+  ScriptedProcessor processor;
+  PipelineOptions options;
+  options.frames = 50;
+  options.lock_step = true;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 50u);
+  EXPECT_EQ(stats.dropped, 0u);
+  const auto records = rig.telemetry.records();
+  for (std::size_t i = 0; i < records.size(); ++i) EXPECT_EQ(records[i].index, i);
+}
+
+TEST(PipelineTest, WatchdogParksTheServosWhenAControlStepStalls) {
+  Rig rig;
+  ScriptedProcessor processor;
+  processor.stall_at = 5;
+  processor.stall = std::chrono::milliseconds(600);
+  PipelineOptions options;
+  options.frames = 10;
+  options.lock_step = true;
+  options.watchdog_ms = 150;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.watchdog_stalls, 1u);
+  // Commands to the pan axis: Open parks it (0), the loop holds 5 deg, the watchdog parks it
+  // during the stall (0), the loop resumes at 5, and the end of the run parks it again.
+  std::vector<double> pan;
+  for (const FakeServoCommand& c : rig.fake->commands()) {
+    if (c.kind == FakeServoCommand::Kind::kSetAngle && c.axis == ServoAxis::kPan) {
+      pan.push_back(c.deg);
+    }
+  }
+  ASSERT_GE(pan.size(), 12u);
+  EXPECT_EQ(pan.front(), 0.0);
+  EXPECT_EQ(pan[1], 5.0);
+  // Frames 0…4 command 5 deg, then the watchdog's park, then frames 5…9.
+  EXPECT_EQ(pan[6], 0.0) << "the watchdog did not park the pan servo during the stall";
+  EXPECT_EQ(pan[7], 5.0);
+  EXPECT_EQ(pan.back(), 0.0);
+}
+
+TEST(PipelineTest, NoStallNoPark) {
+  Rig rig;
+  ScriptedProcessor processor;
+  PipelineOptions options;
+  options.frames = 10;
+  options.lock_step = true;
+  options.watchdog_ms = 200;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  EXPECT_EQ(pipeline.Run().watchdog_stalls, 0u);
+}
+
+}  // namespace
+}  // namespace kapfix::agent
