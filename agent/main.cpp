@@ -33,9 +33,7 @@ int Fail(const std::string& message, int code) {
   return code;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   using namespace kapfix::agent;
   spdlog::set_default_logger(spdlog::stderr_color_mt("kapfix-agent"));
 
@@ -150,4 +148,16 @@ int main(int argc, char** argv) {
   }
   if (!stats.error.empty()) return Fail(stats.error, 1);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {
+    return Fail(e.what(), 1);
+  } catch (...) {
+    return Fail("unexpected error", 1);
+  }
 }

@@ -4,8 +4,7 @@
 // the best one the CPU supports: the shipped binary runs on any x86-64 board and uses the
 // wider registers where they exist.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_ADDRESS__) && \
-    !defined(__SANITIZE_THREAD__)
+    !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 #define KAPFIX_KERNEL __attribute__((target_clones("avx2", "default")))
 #else
 #define KAPFIX_KERNEL

@@ -61,8 +61,8 @@ TEST(AnalyzeCliTest, SwingPrintsItsFiguresAsJson) {
 }
 
 TEST(AnalyzeCliTest, SwingWithPyrHoldsTheAerialViewDespiteTheWobble) {
-  const auto json = ParseJson(RunAnalyze("swing --image " + Photo("aero1.jpg") +
-                                         " --strategy pyr --frames 120 --json"));
+  const auto json = ParseJson(
+      RunAnalyze("swing --image " + Photo("aero1.jpg") + " --strategy pyr --frames 120 --json"));
   ASSERT_TRUE(json.is_object());
   EXPECT_LT(json["mean_abs_err_px"].get<double>(), 1.0);
   EXPECT_GT(json["within_2px_pct"].get<double>(), 97.0);
