@@ -10,41 +10,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "common/analysis/statistics.hpp"
+#include "common/io/atomic_file.hpp"
 #include "common/plot/line_plot.hpp"
 
 namespace kapfix::agent {
-namespace {
-
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) - 1;
-  const auto at = values.begin() + static_cast<std::ptrdiff_t>(std::min(k, values.size() - 1));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
-}
-
-void WriteAtomically(const std::filesystem::path& target, const std::string& bytes) {
-  const std::filesystem::path temp = target.string() + ".part";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      out.close();
-      std::filesystem::remove(temp);
-      throw std::runtime_error("cannot write '" + target.string() + "': " + reason);
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, target, ec);
-  if (ec) {
-    std::filesystem::remove(temp);
-    throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
-  }
-}
-
-}  // namespace
+namespace {}  // namespace
 
 FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
                                    const PipelineStats& stats) {
@@ -70,8 +41,8 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   f.lock_lost_pct = after_reference > 0
                         ? 100.0 * static_cast<double>(lost) / static_cast<double>(after_reference)
                         : 0.0;
-  f.loop_latency_p50_ms = Percentile(latency, 0.50);
-  f.loop_latency_p99_ms = Percentile(latency, 0.99);
+  f.loop_latency_p50_ms = latency.empty() ? 0.0 : Percentile(latency, 50.0);
+  f.loop_latency_p99_ms = latency.empty() ? 0.0 : Percentile(latency, 99.0);
   f.rss_mb = PeakRssMb();
   return f;
 }
@@ -100,7 +71,7 @@ void WriteFlightReport(const std::string& dir, const nlohmann::json& summary,
                              "': " + (ec ? ec.message() : "not a folder"));
   }
   const std::filesystem::path out(dir);
-  WriteAtomically(out / "telemetry.csv", TelemetryRecorder::ToCsv(records));
+  WriteFileAtomically(out / "telemetry.csv", TelemetryRecorder::ToCsv(records));
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
   plot::PlotSeries mx{"measured x", {}, cv::Scalar(200, 80, 20)};
@@ -123,8 +94,8 @@ void WriteFlightReport(const std::string& dir, const nlohmann::json& summary,
   if (!cv::imencode(".png", png, bytes)) {
     throw std::runtime_error("cannot encode '" + (out / "displacement.png").string() + "'");
   }
-  WriteAtomically(out / "displacement.png", std::string(bytes.begin(), bytes.end()));
-  WriteAtomically(out / "summary.json", summary.dump(2) + "\n");
+  WriteFileAtomically(out / "displacement.png", std::string(bytes.begin(), bytes.end()));
+  WriteFileAtomically(out / "summary.json", summary.dump(2) + "\n");
 }
 
 }  // namespace kapfix::agent

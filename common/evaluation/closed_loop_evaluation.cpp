@@ -6,18 +6,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
 
 namespace kapfix {
 namespace {
-
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) - 1;
-  const auto at = values.begin() + static_cast<std::ptrdiff_t>(std::min(k, values.size() - 1));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
-}
 
 PredictiveOptions EffectivePredictive(const ClosedLoopOptions& options) {
   PredictiveOptions predictive = options.predictive;
@@ -127,8 +120,8 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.lock_lost_pct = 100.0 * lost / n;
   figures.predicting_pct = 100.0 * predicting / n;
   figures.fps = total_us > 0 ? n / (total_us * 1e-6) : 0.0;
-  figures.loop_latency_p50_ms = Percentile(loop_us, 0.50) / 1000.0;
-  figures.loop_latency_p99_ms = Percentile(loop_us, 0.99) / 1000.0;
+  figures.loop_latency_p50_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 50.0) / 1000.0;
+  figures.loop_latency_p99_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 99.0) / 1000.0;
   return figures;
 }
 

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/io/atomic_file.hpp"
+
 namespace kapfix::analyze {
 
 ReportWriter::ReportWriter(std::string out_dir) : out_dir_(std::move(out_dir)) {
@@ -24,24 +26,7 @@ ReportWriter::ReportWriter(std::string out_dir) : out_dir_(std::move(out_dir)) {
 void ReportWriter::WriteAtomically(const std::string& name, const std::string& bytes) {
   if (!enabled()) return;
   const std::filesystem::path target = std::filesystem::path(out_dir_) / name;
-  const std::filesystem::path temp = target.string() + ".part";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      out.close();
-      std::filesystem::remove(temp);
-      throw std::runtime_error("cannot write '" + target.string() + "': " + reason);
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, target, ec);
-  if (ec) {
-    std::filesystem::remove(temp);
-    throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
-  }
+  WriteFileAtomically(target, bytes);
   written_.push_back(target.string());
 }
 
