@@ -17,7 +17,6 @@ namespace {
 
 using plot::PlotSeries;
 using plot::RenderLinePlot;
-using plot::RenderSmallMultiples;
 
 struct CompareArgs {
   SwingArgs swing;

@@ -15,7 +15,6 @@ namespace kapfix::analyze {
 namespace {
 
 using plot::PlotSeries;
-using plot::RenderLinePlot;
 using plot::RenderSmallMultiples;
 
 struct SspArgs {

@@ -12,9 +12,7 @@
 namespace kapfix::analyze {
 namespace {
 
-using plot::PlotSeries;
 using plot::RenderLinePlot;
-using plot::RenderSmallMultiples;
 
 struct SwingCommandArgs {
   SwingArgs swing;
