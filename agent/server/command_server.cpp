@@ -12,6 +12,7 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 
 namespace kapfix::agent {
@@ -286,19 +287,7 @@ CommandServer::~CommandServer() { Stop(); }
 
 std::string CommandServer::Start() {
   if (impl_->thread.joinable()) throw std::runtime_error("command server already started");
-  impl_->context = std::make_unique<zmq::context_t>(1);
-  std::promise<std::string> bound;
-  std::future<std::string> endpoint = bound.get_future();
-  impl_->thread = std::thread([impl = impl_.get(), promise = std::move(bound)]() mutable {
-    impl->Run(std::move(promise));
-  });
-  try {
-    return endpoint.get();
-  } catch (...) {
-    impl_->thread.join();
-    impl_->context.reset();
-    throw;
-  }
+  return StartSocketThread(impl_.get());
 }
 
 void CommandServer::Stop() {

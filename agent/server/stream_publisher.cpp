@@ -17,6 +17,7 @@
 #include <utility>
 #include <zmq.hpp>
 
+#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 
@@ -206,19 +207,7 @@ std::string StreamPublisher::Start() {
     const std::lock_guard lock(impl_->mutex);
     impl_->stopping = false;
   }
-  impl_->context = std::make_unique<zmq::context_t>(1);
-  std::promise<std::string> bound;
-  std::future<std::string> endpoint = bound.get_future();
-  impl_->thread = std::thread([impl = impl_.get(), promise = std::move(bound)]() mutable {
-    impl->Run(std::move(promise));
-  });
-  try {
-    return endpoint.get();
-  } catch (...) {
-    impl_->thread.join();
-    impl_->context.reset();
-    throw;
-  }
+  return StartSocketThread(impl_.get());
 }
 
 void StreamPublisher::Stop() {
