@@ -7,9 +7,20 @@ build=${1:-build/ci}
 [ -f "$build/compile_commands.json" ] || { echo "run-tidy: no $build/compile_commands.json (configure first)" >&2; exit 2; }
 mapfile -t files < <(git ls-files 'common/*.cpp' 'tools/*.cpp' 'agent/*.cpp' 'proto/*.cpp' 'bench/*.cpp')
 echo "run-tidy: ${#files[@]} files"
-printf '%s\n' "${files[@]}" | xargs -P "$(nproc)" -n 4 clang-tidy -p "$build" --quiet 2>&1 \
-  | grep -v -E '^[0-9]+ warnings? generated|^Suppressed|^Use -header-filter' | tee /tmp/kapfix-tidy.log
-if grep -q -E 'warning:|error:' /tmp/kapfix-tidy.log; then
+log=$(mktemp "${TMPDIR:-/tmp}/kapfix-tidy.XXXXXX")
+trap 'rm -f "$log"' EXIT
+# The findings in the log decide, not clang-tidy's exit status (xargs reports 123 for any
+# non-zero one); only "could not run clang-tidy at all" (124..127) fails here. grep -v exits 1
+# when every line is filtered out (a clean run), so its status is ignored.
+status=0
+printf '%s\n' "${files[@]}" | xargs -P "$(nproc)" -n 4 clang-tidy -p "$build" --quiet >"$log" 2>&1 || status=$?
+if [ "$status" -ge 124 ]; then
+  cat "$log" >&2
+  echo "run-tidy: could not run clang-tidy (xargs exit $status)" >&2
+  exit 1
+fi
+{ grep -v -E '^[0-9]+ warnings? generated|^Suppressed|^Use -header-filter' "$log" || true; } >&2
+if grep -q -E 'warning:|error:' "$log"; then
   echo "run-tidy: clang-tidy found problems" >&2
   exit 1
 fi
