@@ -4,10 +4,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "common/selection/direction_changes.hpp"
 #include "common/selection/displacement_graph.hpp"
-#include "common/selection/fft_score.hpp"
-#include "common/selection/slice_geometry.hpp"
+#include "common/selection/patch_size_selection_run.hpp"
 
 namespace kapfix {
 namespace {
@@ -55,25 +53,14 @@ PatchSizeSelection SelectPatchSize(const std::vector<cv::Mat>& planes,
                                 std::to_string(planes.size()));
   }
   CheckSwingPlanes(planes, "SelectPatchSize");
-  const cv::Size frame = planes.front().size();
-  // Check every size before the long part, so that a bad one fails at once.
-  std::vector<cv::Rect> patches;
-  for (const int size : options.sizes) patches.push_back(SlicePatch(frame, 1, 1, size));
-
-  const int pairs = static_cast<int>(planes.size()) - 1;
-  const int total = pairs * static_cast<int>(options.sizes.size());
-  PatchSizeSelection selection;
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    const int done_before = static_cast<int>(i) * pairs;
-    std::function<void(int, int)> step;
-    if (progress) step = [&](int done, int) { progress(done_before + done, total); };
-    const DisplacementGraph graph = BuildDisplacementGraph(planes, patches[i], options.sampling,
-                                                           strategy, options.search, step);
-    selection.sizes.push_back(
-        {options.sizes[i], CountDirectionChanges(graph.samples), FftScore(graph.samples)});
+  PatchSizeSelectionRun run(planes.front(), strategy, options);
+  const int sizes = static_cast<int>(options.sizes.size());
+  const int total = (static_cast<int>(planes.size()) - 1) * sizes;
+  for (std::size_t t = 1; t < planes.size(); ++t) {
+    run.AddFrame(planes[t]);
+    if (progress) progress(static_cast<int>(t) * sizes, total);
   }
-  selection.best_size = BestPatchSize(selection.sizes);
-  return selection;
+  return run.Result();
 }
 
 }  // namespace kapfix

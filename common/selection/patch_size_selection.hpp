@@ -37,7 +37,8 @@ struct PatchSizeSelectionOptions {
 int BestPatchSize(const std::vector<PatchSizeScore>& scores);
 
 // Runs PSS over the frames of a free swing (single-channel planes of equal size and type).
-// progress(done, total) follows each frame pair of each size, total = sizes × (frames − 1).
+// progress(done, total) follows each frame, all sizes measured on it: done counts graph samples,
+// total = sizes × (frames − 1).
 // Throws std::invalid_argument for invalid options, fewer than two frames, mismatched planes
 // or a size that does not fit the frame.
 PatchSizeSelection SelectPatchSize(const std::vector<cv::Mat>& planes,
