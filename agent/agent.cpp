@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
@@ -12,7 +13,6 @@
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
-#include "common/control/controller_factory.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
 
 namespace kapfix::agent {
@@ -25,8 +25,6 @@ SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind) {
   return kind == MotionKind::kBoat ? SimulatedPlatformOptions::Motion::kBoat
                                    : SimulatedPlatformOptions::Motion::kKite;
 }
-
-std::string ControllerName(ControllerKind kind) { return std::string(ToString(kind)); }
 
 SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   const ClosedLoopOptions base =
@@ -45,30 +43,6 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   o.tilt.max_deg = config.servo.tilt.limits.max_deg;
   o.tilt.initial_deg = config.servo.tilt.limits.park_deg;
   return o;
-}
-
-FixationOptions MakeFixationOptions(const AgentConfig& config) {
-  FixationOptions o;
-  o.search.axis = config.search.axis;
-  o.search.range = config.search.range_px;
-  o.search.subpixel = config.search.subpixel;
-  o.sampling = config.search.sampling;
-  o.channel = config.search.channel;
-  o.patch_size = config.search.patch_px;
-  o.slice_count = config.search.slices;
-  // SSP is not wired into the agent yet: the middle slice.
-  o.slice = (config.search.slices + 1) / 2;
-  return o;
-}
-
-ControllerGains MakeGains(const ControllerConfig& c) {
-  ControllerGains g;
-  g.p = c.kp;
-  g.i = c.ki;
-  g.d = c.kd;
-  g.dead_band_px = c.dead_band_px;
-  g.rate_limit_deg_per_s = c.max_rate_deg_per_s;
-  return g;
 }
 
 std::unique_ptr<FrameSource> MakeCamera(const CameraConfig& camera) {
@@ -92,13 +66,41 @@ AgentConfig BuiltInConfig(MotionKind motion) {
   config.simulation.motion = motion;
   config.search.axis = motion == MotionKind::kBoat ? SearchAxis::kY : SearchAxis::kBoth;
   config.controller.kp = 1.0;
+  // A simulated flight from a user's shell: photos next to it, not in the service's folder.
+  config.photos.dir = "kapfix-photos";
   return config;
+}
+
+bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error) {
+  if (!link.curve_secret_key_file.empty() || insecure) return true;
+  for (const std::string& address : {link.command_address, link.stream_address}) {
+    const bool local = address.starts_with("ipc://") || address.starts_with("inproc://") ||
+                       address.starts_with("tcp://127.") || address.starts_with("tcp://localhost:") ||
+                       address.starts_with("tcp://[::1]:");
+    if (!local) {
+      if (error) {
+        *error = "link address " + address +
+                 " is reachable from the network but no CurveZMQ keys are configured "
+                 "(link.curve_secret_key_file): bind to 127.0.0.1, configure keys, or pass "
+                 "--insecure";
+      }
+      return false;
+    }
+  }
+  return true;
 }
 
 Agent::Agent(AgentConfig config, AgentOptions options)
     : config_(std::move(config)), options_(options) {
   std::string error;
   if (!config_.IsValid(&error)) throw std::runtime_error("invalid configuration: " + error);
+  if (!CheckLinkExposure(config_.link, options_.insecure, &error)) {
+    throw std::runtime_error(error);
+  }
+  if (options_.insecure && config_.link.curve_secret_key_file.empty()) {
+    spdlog::warn("--insecure: the link is open to anyone who can reach {} and {}",
+                 config_.link.command_address, config_.link.stream_address);
+  }
   simulated_ = options_.simulate || (config_.camera.backend == CameraBackend::kSim &&
                                      config_.servo.backend == ServoBackend::kSim);
   if (!simulated_ && (config_.camera.backend == CameraBackend::kSim ||
@@ -128,7 +130,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       spdlog::info("scene upscaled {:.2f}x to cover the frame and the swing",
                    platform_->upscale_factor());
     }
-    auto sim_source = std::make_unique<SimFrameSource>(platform_, fps);
+    auto sim_source = std::make_unique<SimFrameSource>(platform_, fps, options_.real_time);
     const SimFrameSource* truth = sim_source.get();
     pipeline.view_offset = [truth](std::uint64_t index) { return truth->ViewOffset(index); };
     source_ = std::move(sim_source);
@@ -158,32 +160,82 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   }
   if (!servos_->Open(&error)) throw std::runtime_error(error);
 
-  const LensProfile& lens = config_.active_lens();
-  const LensCalibration calibration{lens.DegPerPxPan(), lens.DegPerPxTilt()};
-  std::unique_ptr<Controller> controller =
-      MakeController(ControllerName(config_.controller.kind), MakeGains(config_.controller),
-                     calibration, predictive, &error);
-  if (!controller) throw std::runtime_error(error);
-  std::shared_ptr<const SearchStrategy> strategy =
-      MakeSearchStrategy(config_.search.strategy, &error);
-  if (!strategy) throw std::runtime_error(error);
-  loop_ = std::make_unique<FixationLoop>(MakeFixationOptions(config_), std::move(strategy),
-                                         std::move(controller), calibration);
-  processor_ = std::make_unique<FixationProcessor>(*loop_);
-  pipeline_ =
-      std::make_unique<Pipeline>(*source_, *servos_, *processor_, telemetry_, std::move(pipeline));
+  StreamPublisherOptions publisher_options;
+  publisher_options.bind_endpoint = config_.link.stream_address;
+  publisher_options.agent_id = config_.agent_id;
+  publisher_options.heartbeat_interval = std::chrono::milliseconds(config_.link.heartbeat_ms);
+  publisher_ = std::make_unique<StreamPublisher>(publisher_options);
+  photo_store_ = std::make_unique<PhotoStore>(config_.photos.dir);
+  photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
+    return state_ ? state_->settings().lens : config_.lens;
+  });
+  photos_->SetInterval(config_.photos.interval_s);
+  video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
+  telemetry_publisher_ = std::make_unique<TelemetryPublisher>(
+      *publisher_, [video = video_.get()] { return video->dropped(); });
+  PhotoStore* store = photo_store_.get();
+  state_ = std::make_unique<StateKeeper>(config_, *publisher_, simulated_,
+                                         [store] { return store->count(); });
+
+  ModeRunnerOptions modes;
+  modes.start_mode = options_.start_mode;
+  modes.default_deadline = {config_.search.swing_frames, config_.search.swing_seconds};
+  modes.predictive = predictive;
+  modes.actuation_delay_frames = pipeline.actuation_delay_frames;
+  modes.frame_period_s = 1.0 / fps;
+  modes.recordings_dir = (std::filesystem::path(config_.photos.dir) / "free-swing").string();
+  modes_ = std::make_unique<ModeRunner>(config_, modes, *state_);
+
+  std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
+  if (options_.keep_telemetry) observers.push_back(&telemetry_);
+  pipeline_ = std::make_unique<Pipeline>(*source_, *servos_, *modes_, std::move(observers),
+                                         std::move(pipeline));
+
+  Pipeline* running = pipeline_.get();
+  executor_ = std::make_unique<CommandExecutor>(CommandTargets{
+      .state = *state_,
+      .modes = *modes_,
+      .photos = *photos_,
+      .video = *video_,
+      .apply_camera =
+          [running](const CameraConfig& camera) {
+            running->RequestCameraChange([camera](FrameSource& source) {
+              std::string why;
+              if (camera.gain_db && !source.SetGain(*camera.gain_db, &why)) {
+                spdlog::error("camera gain not set: {}", why);
+              }
+              if (camera.exposure_us && !source.SetExposure(*camera.exposure_us, &why)) {
+                spdlog::error("camera exposure not set: {}", why);
+              }
+            });
+          },
+      .free_swing_recording_possible = true,
+  });
+  CommandServerOptions server_options;
+  server_options.bind_endpoint = config_.link.command_address;
+  server_options.agent_id = config_.agent_id;
+  server_ = std::make_unique<CommandServer>(*executor_, server_options);
+  stream_endpoint_ = publisher_->Start();
+  command_endpoint_ = server_->Start();
 }
 
-Agent::~Agent() = default;
+Agent::~Agent() {
+  // The command server first: no command may reach parts that are going away.
+  if (server_) server_->Stop();
+}
 
-PipelineStats Agent::Run() { return pipeline_->Run(); }
+PipelineStats Agent::Run() {
+  state_->PublishState();
+  return pipeline_->Run();
+}
 
 void Agent::Stop() { pipeline_->Stop(); }
 
 std::string Agent::Describe() const {
   return source_->Describe() + "; " + servos_->Describe() + "; controller " +
-         ControllerName(config_.controller.kind) + ", search " + config_.search.strategy + " " +
-         std::string(ToString(config_.search.axis));
+         std::string(ToString(config_.controller.kind)) + ", search " + config_.search.strategy +
+         " " + std::string(ToString(config_.search.axis)) + "; commands on " + command_endpoint_ +
+         ", streams on " + stream_endpoint_;
 }
 
 }  // namespace kapfix::agent

@@ -6,11 +6,19 @@
 #include <string>
 
 #include "agent/capture/frame_source.hpp"
+#include "agent/commands/command_executor.hpp"
+#include "agent/commands/state_keeper.hpp"
 #include "agent/config/agent_config.hpp"
+#include "agent/downlink/telemetry_publisher.hpp"
+#include "agent/downlink/video_downlink.hpp"
+#include "agent/modes/mode_runner.hpp"
+#include "agent/photos/photo_store.hpp"
+#include "agent/photos/photo_taker.hpp"
 #include "agent/pipeline/pipeline.hpp"
 #include "agent/pipeline/telemetry_recorder.hpp"
+#include "agent/server/command_server.hpp"
+#include "agent/server/stream_publisher.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
-#include "common/fixation/fixation_loop.hpp"
 #include "common/sim/simulated_platform.hpp"
 
 namespace kapfix::agent {
@@ -20,7 +28,16 @@ struct AgentOptions {
   // SimulatedPlatform), whatever the config's backends say (--sim). Also used when both
   // backends are "sim".
   bool simulate = false;
+  // Simulation: frames come at the camera's rate on the wall clock, as from a real camera.
+  // Off: as fast as the machine allows (benchmarks, tests).
+  bool real_time = true;
   std::uint64_t frames = 0;  // frames to process; 0 = until Stop()
+  AgentMode start_mode = AgentMode::kFixate;
+  // Keep every step's telemetry in memory for the flight report (--report): memory grows
+  // with the flight, so only for bounded runs.
+  bool keep_telemetry = false;
+  // Allow the link to listen beyond this machine without CurveZMQ keys (logged as a warning).
+  bool insecure = false;
 };
 
 // kapfix-agent's built-in configuration (no --config): AgentConfig's defaults — everything
@@ -30,10 +47,18 @@ struct AgentOptions {
 // default kp 0.8 leaves 5.2 px RMS on the kite flight of 900 frames where 1.0 leaves 2.9).
 AgentConfig BuiltInConfig(MotionKind motion);
 
-// The agent's top object: wires the parts from an AgentConfig — camera and servos (real or
-// simulated), LimitedServoDriver in front of the servos, the fixation loop (search strategy,
-// controller, lens calibration) and the pipeline's threads — and runs them. It decides
+// Without CurveZMQ keys the link may only listen on this machine (loopback, ipc, inproc)
+// unless `insecure`; false with the reason otherwise (issue 5).
+bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error);
+
+// The agent's top object: wires the parts from an AgentConfig and runs them. It decides
 // nothing itself; the parts do.
+// - camera and servos, real or simulated, with LimitedServoDriver in front of the servos;
+// - the modes (ModeRunner) on the control thread of the Pipeline;
+// - the link: StreamPublisher (telemetry, video, reports, photos, state) and CommandServer
+//   with the CommandExecutor behind it;
+// - the step observers: TelemetryPublisher, VideoDownlink, PhotoTaker and, for a report,
+//   TelemetryRecorder.
 //
 // Simulation (SPEC §3) follows EvaluateClosedLoop's choices: SPEC §3's swing on the scene
 // with gusts as configured, servos with one frame of latency, the lens's deg/px as the
@@ -43,8 +68,9 @@ AgentConfig BuiltInConfig(MotionKind motion);
 // deterministic. Hardware runs free on the wall clock.
 class Agent {
  public:
-  // Opens camera and servos. Throws std::runtime_error with a one-line reason (an unreadable
-  // scene, a device that does not open, an invalid config).
+  // Opens camera, servos and the link's sockets. Throws std::runtime_error with a one-line
+  // reason (an unreadable scene, a device that does not open, an invalid config, an address
+  // already in use).
   Agent(AgentConfig config, AgentOptions options);
   ~Agent();
   Agent(const Agent&) = delete;
@@ -57,9 +83,13 @@ class Agent {
   bool simulated() const { return simulated_; }
   const AgentConfig& config() const { return config_; }
   const TelemetryRecorder& telemetry() const { return telemetry_; }
-  std::string Describe() const;  // camera, servos, controller on one line
+  std::string Describe() const;  // camera, servos, controller, link on one line
   // Servo hard limits in force (from the config).
   const ServoLimits& limits(ServoAxis axis) const { return servos_->limits(axis); }
+  const std::string& command_endpoint() const { return command_endpoint_; }
+  const std::string& stream_endpoint() const { return stream_endpoint_; }
+  StreamPublisher::Counters link_counters() const { return publisher_->counters(); }
+  std::uint64_t video_frames_sent() const { return video_->sent(); }
 
  private:
   AgentConfig config_;
@@ -68,10 +98,21 @@ class Agent {
   std::shared_ptr<SimulatedPlatform> platform_;
   std::unique_ptr<FrameSource> source_;
   std::unique_ptr<LimitedServoDriver> servos_;
-  std::unique_ptr<FixationLoop> loop_;
-  std::unique_ptr<FixationProcessor> processor_;
+  // The link and the observers outlive the pipeline and the command server that use them
+  // (members are destroyed in reverse order).
+  std::unique_ptr<StreamPublisher> publisher_;
+  std::unique_ptr<PhotoStore> photo_store_;
+  std::unique_ptr<PhotoTaker> photos_;
+  std::unique_ptr<VideoDownlink> video_;
+  std::unique_ptr<TelemetryPublisher> telemetry_publisher_;
   TelemetryRecorder telemetry_;
+  std::unique_ptr<StateKeeper> state_;
+  std::unique_ptr<ModeRunner> modes_;
   std::unique_ptr<Pipeline> pipeline_;
+  std::unique_ptr<CommandExecutor> executor_;
+  std::unique_ptr<CommandServer> server_;
+  std::string command_endpoint_;
+  std::string stream_endpoint_;
 };
 
 }  // namespace kapfix::agent

@@ -47,6 +47,12 @@ int Main(int argc, char** argv) {
   std::optional<std::uint64_t> frames;
   std::string report_dir;
   std::optional<std::uint32_t> seed;
+  std::string command_address;
+  std::string stream_address;
+  std::string photos_dir;
+  std::string start_mode = "fixate";
+  bool insecure = false;
+  bool max_speed = false;
   app.add_option("--config", config_path,
                  "configuration file (resources/README.md); default: built-in defaults, which "
                  "fly in simulation");
@@ -66,6 +72,17 @@ int Main(int argc, char** argv) {
   app.add_option("--report", report_dir,
                  "write DIR/summary.json, DIR/telemetry.csv, DIR/displacement.png at the end");
   app.add_option("--seed", seed, "simulation seed (overrides the config)");
+  app.add_option("--command-address", command_address,
+                 "ZeroMQ address for commands (overrides link.command, e.g. tcp://127.0.0.1:5555)");
+  app.add_option("--stream-address", stream_address,
+                 "ZeroMQ address for the streams (overrides link.stream)");
+  app.add_option("--photos", photos_dir, "folder for photos and recordings (overrides photos.dir)");
+  app.add_option("--mode", start_mode, "mode on the first frame")
+      ->check(CLI::IsMember({"idle", "fixate", "follow", "ssp", "pss", "calibrate"}));
+  app.add_flag("--insecure", insecure,
+               "let the link listen beyond this machine without CurveZMQ keys (not for a field)");
+  app.add_flag("--max-speed", max_speed,
+               "simulation: frames as fast as the machine allows, not at the camera's rate");
   CLI11_PARSE(app, argc, argv);
 
   AgentConfig config;
@@ -80,9 +97,16 @@ int Main(int argc, char** argv) {
   if (seed) config.simulation.seed = *seed;
   if (!scene.empty()) config.simulation.scene = scene;
   if (config.simulation.scene.empty()) config.simulation.scene = kDefaultScene;
+  if (!command_address.empty()) config.link.command_address = command_address;
+  if (!stream_address.empty()) config.link.stream_address = stream_address;
+  if (!photos_dir.empty()) config.photos.dir = photos_dir;
 
   AgentOptions options;
   options.simulate = force_sim;
+  options.real_time = !max_speed;
+  options.start_mode = *ParseAgentMode(start_mode);
+  options.keep_telemetry = !report_dir.empty();
+  options.insecure = insecure;
   if (frames) options.frames = *frames;
   if (duration_s) {
     options.frames = static_cast<std::uint64_t>(std::llround(*duration_s * config.camera.fps));
@@ -119,6 +143,13 @@ int Main(int argc, char** argv) {
   done = true;
   stopper.join();
 
+  if (!options.keep_telemetry) {
+    spdlog::info("processed {} frames in {:.1f} s ({} dropped, {} watchdog stalls, {} servo errors)",
+                 stats.processed, stats.wall_s, stats.dropped, stats.watchdog_stalls,
+                 stats.servo_errors);
+    if (!stats.error.empty()) return Fail(stats.error, 1);
+    return 0;
+  }
   const auto records = agent->telemetry().records();
   const FlightFigures figures = ComputeFlightFigures(records, stats);
   nlohmann::json summary = {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 
 namespace kapfix::agent {
 namespace {
@@ -10,14 +11,16 @@ constexpr std::size_t kTruthFrames = 1024;
 
 }  // namespace
 
-SimFrameSource::SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps)
-    : platform_(std::move(platform)), fps_(fps) {
+SimFrameSource::SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps,
+                               bool real_time)
+    : platform_(std::move(platform)), fps_(fps), real_time_(real_time) {
   if (!platform_) throw std::invalid_argument("SimFrameSource: no platform");
   if (!std::isfinite(fps_) || fps_ <= 0) throw std::invalid_argument("SimFrameSource: fps ≤ 0");
 }
 
 bool SimFrameSource::Open(std::string* /*error*/) {
   open_ = true;
+  start_ = std::chrono::steady_clock::now();
   return true;
 }
 
@@ -25,6 +28,11 @@ bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
   if (!open_) {
     if (error) *error = Describe() + ": not open";
     return false;
+  }
+  if (real_time_) {
+    std::this_thread::sleep_until(
+        start_ + std::chrono::microseconds(
+                     std::llround(static_cast<double>(next_index_) * 1e6 / fps_)));
   }
   if (next_index_ > 0) platform_->Step();
   const SimulatedFrame captured = platform_->CaptureFrame();

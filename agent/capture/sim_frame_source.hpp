@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -24,8 +25,11 @@ namespace kapfix::agent {
 // frames and can be asked for by index (telemetry and the closed-loop figures use it).
 class SimFrameSource : public FrameSource {
  public:
-  // Throws std::invalid_argument for a null platform or fps ≤ 0.
-  SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps);
+  // Throws std::invalid_argument for a null platform or fps ≤ 0. `real_time`: Grab also waits
+  // for the frame's time on the wall clock, as a real camera does, so that a station sees the
+  // flight at its true pace; otherwise frames come as fast as they are asked for (benchmarks,
+  // tests).
+  SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps, bool real_time = false);
 
   bool Open(std::string* error) override;
   bool Grab(CapturedFrame* frame, std::string* error) override;
@@ -41,6 +45,8 @@ class SimFrameSource : public FrameSource {
  private:
   std::shared_ptr<SimulatedPlatform> platform_;
   double fps_;
+  bool real_time_;
+  std::chrono::steady_clock::time_point start_;
   bool open_ = false;
   std::uint64_t next_index_ = 0;
   mutable std::mutex truth_mutex_;

@@ -98,6 +98,12 @@ void ReadSearch(ConfigReader& r, SearchConfig* c) {
   r.ReadParsed<ColorChannel>("channel", &c->channel,
                              Enum<ColorChannel>(ParseColorChannel, "green or rgb"));
   r.Read("subpixel", &c->subpixel);
+  r.ReadParsed<SliceScoreKind>(
+      "slice_score", &c->slice_score,
+      Enum<SliceScoreKind>(ParseSliceScoreKind, "dc, dc-hyst, fft or single-shot"));
+  r.Read("dc_hysteresis_px", &c->dc_hysteresis_px);
+  r.Read("swing_frames", &c->swing_frames);
+  r.Read("swing_seconds", &c->swing_seconds);
 }
 
 void ReadController(ConfigReader& r, ControllerConfig* c) {

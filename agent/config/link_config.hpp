@@ -6,8 +6,10 @@ namespace kapfix::agent {
 
 // The "link" section (SPEC §5, issue 5). Defaults: resources/README.md.
 struct LinkConfig {
-  std::string command_address = "tcp://*:5555";  // ROUTER: commands and replies
-  std::string stream_address = "tcp://*:5556";   // PUB: telemetry, video, reports, photos
+  // Loopback by default: without CurveZMQ keys the agent refuses to listen on the network
+  // (unless --insecure). A field setup sets "tcp://*:5555" / "tcp://*:5556" with keys.
+  std::string command_address = "tcp://127.0.0.1:5555";  // ROUTER: commands and replies
+  std::string stream_address = "tcp://127.0.0.1:5556";   // PUB: telemetry, video, reports, photos
   int heartbeat_ms = 1000;                       // [ms] interval of heartbeats both ways
   // CurveZMQ: the agent's secret key file and the file listing the station public keys it
   // accepts (kapfix-keygen writes both). Both empty = no encryption, which the agent allows

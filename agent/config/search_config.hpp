@@ -6,6 +6,8 @@
 #include "common/sampling/sampling_pattern.hpp"
 #include "common/search/search_strategy.hpp"
 
+#include "common/selection/slice_score.hpp"
+
 namespace kapfix::agent {
 
 // The "search" section: how the matcher looks for the reference patch (SPEC §2.1–§2.3, §2.6).
@@ -19,6 +21,11 @@ struct SearchConfig {
   int range_px = 100;                // [px] R: shifts searched in [−R, R]
   ColorChannel channel = ColorChannel::kGreen;  // green or rgb
   bool subpixel = true;                         // parabola refinement
+  SliceScoreKind slice_score = SliceScoreKind::kDc;  // what ranks the slices in SSP
+  double dc_hysteresis_px = 1.5;                     // [px] of the dc-hyst score
+  // Free-swing processes (SSP, PSS, recording) stop after this many frames or seconds.
+  int swing_frames = 300;     // [frames] 2…100000
+  double swing_seconds = 20;  // [s] 0.1…3600
 
   bool IsValid(std::string* error) const;
 };

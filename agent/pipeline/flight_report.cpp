@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
@@ -22,25 +23,34 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   FlightFigures f;
   f.frames = records.size();
   f.fps = stats.wall_s > 0 ? static_cast<double>(stats.processed) / stats.wall_s : 0.0;
+  // The simulation's truth is each frame's view offset from frame 0's view; what fixation
+  // holds is the view of its reference frame, so the error is the difference of the two.
+  std::map<std::uint64_t, cv::Point2d> truth;
+  for (const TelemetryRecord& r : records) {
+    if (r.view_offset_x_px && r.view_offset_y_px) {
+      truth[r.index] = {*r.view_offset_x_px, *r.view_offset_y_px};
+    }
+  }
   std::vector<double> latency;
   double sum_sq = 0;
-  std::size_t with_truth = 0, after_reference = 0, lost = 0;
+  std::size_t with_truth = 0, fixating = 0, lost = 0;
   for (std::size_t i = 1; i < records.size(); ++i) {
     const TelemetryRecord& r = records[i];
-    ++after_reference;
-    lost += r.lock_lost ? 1 : 0;
     latency.push_back(r.loop_latency_ms);
-    if (r.view_offset_x_px && r.view_offset_y_px) {
-      sum_sq +=
-          *r.view_offset_x_px * *r.view_offset_x_px + *r.view_offset_y_px * *r.view_offset_y_px;
-      ++with_truth;
-    }
+    if (!r.reference_frame || *r.reference_frame == r.index) continue;
+    ++fixating;
+    lost += r.lock_lost ? 1 : 0;
+    const auto now = truth.find(r.index);
+    const auto held = truth.find(*r.reference_frame);
+    if (now == truth.end() || held == truth.end()) continue;
+    const cv::Point2d error = now->second - held->second;
+    sum_sq += error.dot(error);
+    ++with_truth;
   }
   f.rms_error_px = with_truth > 0 ? std::sqrt(sum_sq / static_cast<double>(with_truth))
                                   : std::numeric_limits<double>::quiet_NaN();
-  f.lock_lost_pct = after_reference > 0
-                        ? 100.0 * static_cast<double>(lost) / static_cast<double>(after_reference)
-                        : 0.0;
+  f.lock_lost_pct =
+      fixating > 0 ? 100.0 * static_cast<double>(lost) / static_cast<double>(fixating) : 0.0;
   f.loop_latency_p50_ms = latency.empty() ? 0.0 : Percentile(latency, 50.0);
   f.loop_latency_p99_ms = latency.empty() ? 0.0 : Percentile(latency, 99.0);
   f.rss_mb = PeakRssMb();

@@ -9,11 +9,12 @@
 
 namespace kapfix::agent {
 
-// The closed-loop figures of one flight (issue 3). Every figure is over the frames after the
-// reference frame (the first one), which is 0 px by construction.
+// The closed-loop figures of one flight (issue 3). The error and lock figures are over the
+// frames spent fixating, each against the view of the reference frame it held (which itself is
+// left out, 0 px by construction); latency over every frame after the first.
 struct FlightFigures {
   double rms_error_px = 0;   // [px] RMS of |view offset| (simulation truth); NaN without truth
-  double lock_lost_pct = 0;  // [%] frames reported lock lost
+  double lock_lost_pct = 0;  // [%] fixating frames reported lock lost
   std::uint64_t frames = 0;  // control steps, reference frame included
   double fps = 0;            // frames processed per wall-clock second
   double loop_latency_p50_ms = 0;  // [ms]

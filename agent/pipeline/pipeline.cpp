@@ -20,11 +20,11 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcessor& processor,
-                   TelemetryRecorder& telemetry, PipelineOptions options)
+                   std::vector<StepObserver*> observers, PipelineOptions options)
     : source_(source),
       servos_(servos),
       processor_(processor),
-      telemetry_(telemetry),
+      observers_(std::move(observers)),
       options_(std::move(options)) {}
 
 PipelineStats Pipeline::Run() {
@@ -60,8 +60,19 @@ PipelineStats Pipeline::Run() {
   return stats;
 }
 
+void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
+  std::lock_guard lock(camera_mutex_);
+  camera_changes_.push_back(std::move(change));
+}
+
 void Pipeline::CaptureThread(PipelineStats* stats) {
   while (!stop_) {
+    std::vector<std::function<void(FrameSource&)>> changes;
+    {
+      std::lock_guard lock(camera_mutex_);
+      std::swap(changes, camera_changes_);
+    }
+    for (const auto& change : changes) change(source_);
     CapturedFrame frame;
     std::string error;
     if (!source_.Grab(&frame, &error)) {
@@ -91,13 +102,8 @@ ServoTargets Pipeline::SeenThrough(std::uint64_t index) const {
 
 void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& kick) {
   std::optional<std::int64_t> previous_time_us;
-  bool has_reference = false;
   while (auto frame = slot_.Take()) {
     const auto start = std::chrono::steady_clock::now();
-    if (!has_reference) {
-      processor_.SetReference(frame->image);
-      has_reference = true;
-    }
     double dt_s = options_.default_frame_period_s;
     if (previous_time_us && frame->capture_time_us > *previous_time_us) {
       dt_s = static_cast<double>(frame->capture_time_us - *previous_time_us) * 1e-6;
@@ -105,7 +111,8 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     previous_time_us = frame->capture_time_us;
 
     const ServoTargets current = SeenThrough(frame->index);
-    const FixationLoop::Step step = processor_.Process(frame->image, current, dt_s);
+    const FrameOutcome outcome = processor_.Process(*frame, current, dt_s);
+    const FixationLoop::Step& step = outcome.step;
     ServoTargets angles;
     {
       std::lock_guard lock(servo_mutex_);
@@ -132,13 +139,17 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     record.angle_pan_deg = angles.pan_deg;
     record.angle_tilt_deg = angles.tilt_deg;
     record.loop_latency_ms = MsSince(start);
+    record.mode = outcome.mode;
+    record.slice = outcome.slice;
+    record.distance = step.match.distance;
+    record.reference_frame = outcome.reference_frame;
     if (options_.view_offset) {
       if (const auto offset = options_.view_offset(frame->index)) {
         record.view_offset_x_px = offset->x;
         record.view_offset_y_px = offset->y;
       }
     }
-    telemetry_.Add(record);
+    for (StepObserver* observer : observers_) observer->OnStep(*frame, outcome, record);
     kick();
     ++stats->processed;
     slot_.MarkDone(frame->index);

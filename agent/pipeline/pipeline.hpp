@@ -8,37 +8,16 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "agent/capture/frame_source.hpp"
+#include "agent/pipeline/frame_processor.hpp"
 #include "agent/pipeline/latest_frame_slot.hpp"
-#include "agent/pipeline/telemetry_recorder.hpp"
+#include "agent/pipeline/step_observer.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/fixation/fixation_loop.hpp"
 
 namespace kapfix::agent {
-
-// What the control thread runs on each frame: FixationLoop in the agent, anything in tests.
-class FrameProcessor {
- public:
-  virtual ~FrameProcessor() = default;
-  virtual void SetReference(const cv::Mat& frame_bgr) = 0;
-  virtual FixationLoop::Step Process(const cv::Mat& frame_bgr, const ServoTargets& current,
-                                     double dt_s) = 0;
-};
-
-// FixationLoop as a FrameProcessor.
-class FixationProcessor : public FrameProcessor {
- public:
-  explicit FixationProcessor(FixationLoop& loop) : loop_(loop) {}
-  void SetReference(const cv::Mat& frame_bgr) override { loop_.SetReference(frame_bgr); }
-  FixationLoop::Step Process(const cv::Mat& frame_bgr, const ServoTargets& current,
-                             double dt_s) override {
-    return loop_.Process(frame_bgr, current, dt_s);
-  }
-
- private:
-  FixationLoop& loop_;
-};
 
 struct PipelineOptions {
   // Frames to process, then stop; 0 = until Stop() or the camera fails.
@@ -75,13 +54,16 @@ class Pipeline {
  public:
   // The driver must be open. Source, driver, processor and recorder must outlive the pipeline.
   Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcessor& processor,
-           TelemetryRecorder& telemetry, PipelineOptions options);
+           std::vector<StepObserver*> observers, PipelineOptions options);
 
   // Runs until options.frames are processed, Stop(), or a camera failure; then parks the
   // servos. Blocks; call once.
   PipelineStats Run();
   // From any thread: ends Run soon.
   void Stop() { stop_ = true; }
+  // From any thread: `change` runs on the capture thread before its next Grab, because camera
+  // drivers are not safe to call from two threads.
+  void RequestCameraChange(std::function<void(FrameSource&)> change);
 
  private:
   void CaptureThread(PipelineStats* stats);
@@ -91,10 +73,12 @@ class Pipeline {
   FrameSource& source_;
   LimitedServoDriver& servos_;
   FrameProcessor& processor_;
-  TelemetryRecorder& telemetry_;
+  std::vector<StepObserver*> observers_;
   PipelineOptions options_;
   LatestFrameSlot slot_;
   std::atomic<bool> stop_{false};
+  std::mutex camera_mutex_;
+  std::vector<std::function<void(FrameSource&)>> camera_changes_;
   std::mutex servo_mutex_;  // LimitedServoDriver is not thread-safe: control vs watchdog
   std::deque<std::pair<std::uint64_t, ServoTargets>> commanded_;  // control thread only
 };

@@ -19,17 +19,23 @@ std::size_t TelemetryRecorder::size() const {
   return records_.size();
 }
 
+void TelemetryRecorder::OnStep(const CapturedFrame& /*frame*/, const FrameOutcome& /*outcome*/,
+                               const TelemetryRecord& record) {
+  Add(record);
+}
+
 std::string TelemetryRecorder::ToCsv(const std::vector<TelemetryRecord>& records) {
   std::ostringstream csv;
   csv.precision(8);
   csv << "index,capture_time_us,found,displacement_x_px,displacement_y_px,confidence,lock_lost,"
          "target_pan_deg,target_tilt_deg,angle_pan_deg,angle_tilt_deg,loop_latency_ms,"
-         "view_offset_x_px,view_offset_y_px\n";
+         "mode,slice,view_offset_x_px,view_offset_y_px\n";
   for (const TelemetryRecord& r : records) {
     csv << r.index << ',' << r.capture_time_us << ',' << (r.found ? 1 : 0) << ','
         << r.displacement_x_px << ',' << r.displacement_y_px << ',' << r.confidence << ','
         << (r.lock_lost ? 1 : 0) << ',' << r.target_pan_deg << ',' << r.target_tilt_deg << ','
-        << r.angle_pan_deg << ',' << r.angle_tilt_deg << ',' << r.loop_latency_ms << ',';
+        << r.angle_pan_deg << ',' << r.angle_tilt_deg << ',' << r.loop_latency_ms << ','
+        << ToString(r.mode) << ',' << r.slice << ',';
     if (r.view_offset_x_px) csv << *r.view_offset_x_px;
     csv << ',';
     if (r.view_offset_y_px) csv << *r.view_offset_y_px;

@@ -23,6 +23,8 @@
 #include <memory>
 #include <string>
 
+#include "agent/server/stream_sink.hpp"
+
 namespace kapfix::agent {
 
 struct StreamPublisherOptions {
@@ -42,7 +44,7 @@ struct StreamPublisherOptions {
   std::chrono::milliseconds zmtp_heartbeat_timeout{10000};
 };
 
-class StreamPublisher {
+class StreamPublisher : public StreamSink {
  public:
   struct Counters {
     std::uint64_t telemetry_sent = 0;     // [count] "telemetry" messages handed to ZeroMQ
@@ -57,7 +59,7 @@ class StreamPublisher {
   };
 
   explicit StreamPublisher(StreamPublisherOptions options = {});
-  ~StreamPublisher();  // Stop()s
+  ~StreamPublisher() override;  // Stop()s
   StreamPublisher(const StreamPublisher&) = delete;
   StreamPublisher& operator=(const StreamPublisher&) = delete;
 
@@ -70,7 +72,7 @@ class StreamPublisher {
   // Queues a copy of `message` (any type with a topic, e.g. Telemetry, VideoFrame, SliceReport,
   // Photo, Log, AgentState). Thread-safe, never blocks on the network. False when the message
   // was dropped or rejected, which the counters record. Messages queued before Start() wait.
-  bool Publish(const google::protobuf::Message& message);
+  bool Publish(const google::protobuf::Message& message) override;
 
   // Thread-safe: e.g. when a station changes VideoSettings.fps.
   void SetVideoMinInterval(std::chrono::microseconds interval);

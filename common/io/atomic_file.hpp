@@ -5,7 +5,7 @@
 
 namespace kapfix {
 
-// Writes `bytes` to `target` through a temporary file in the same folder and a rename, so a
+// Writes `bytes` to `target` through a temporary file in the same folder, fsync and a rename, so a
 // reader never sees a half-written file and a failed write (full disk, no permission) leaves
 // neither a partial file nor the temporary behind. Throws std::runtime_error naming the file
 // and the reason.

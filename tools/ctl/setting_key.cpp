@@ -130,10 +130,11 @@ bool SetChannel(Command& command, std::string_view text) {
 }
 
 bool SetSliceScore(Command& command, std::string_view text) {
-  static constexpr std::array<std::pair<std::string_view, kapfix::v1::SliceScoreKind>, 3> kNames{{
+  static constexpr std::array<std::pair<std::string_view, kapfix::v1::SliceScoreKind>, 4> kNames{{
       {"dc", kapfix::v1::SLICE_SCORE_KIND_DC},
       {"dc_hysteresis", kapfix::v1::SLICE_SCORE_KIND_DC_HYSTERESIS},
       {"single_shot", kapfix::v1::SLICE_SCORE_KIND_SINGLE_SHOT},
+      {"fft", kapfix::v1::SLICE_SCORE_KIND_FFT},
   }};
   const auto value = ParseKeyword(text, kNames);
   if (!value) return false;
@@ -180,7 +181,7 @@ const std::vector<SettingKey>& SettingKeys() {
       {"subpixel", "on | off",
        &SetBool<&Command::mutable_set_search, &SearchSettings::set_subpixel>},
       {"channel", "green | rgb", &SetChannel},
-      {"slice_score", "dc | dc_hysteresis | single_shot", &SetSliceScore},
+      {"slice_score", "dc | dc_hysteresis | single_shot | fft", &SetSliceScore},
       {"hysteresis", "[px] hysteresis of the DC-with-hysteresis score",
        &SetFloat<&Command::mutable_set_search, &SearchSettings::set_dc_hysteresis_px>},
       {"gain", "[dB] camera gain",

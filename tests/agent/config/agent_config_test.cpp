@@ -183,8 +183,8 @@ TEST_F(AgentConfigFileTest, PartialFileKeepsDefaultsForTheRest) {
   EXPECT_EQ(config.agent_id, "kite-2");
   EXPECT_EQ(config.camera.fps, 60);
   EXPECT_EQ(config.camera.width, 640);
-  EXPECT_EQ(config.link.command_address, "tcp://*:5555");
-  EXPECT_EQ(config.link.stream_address, "tcp://*:5556");
+  EXPECT_EQ(config.link.command_address, "tcp://127.0.0.1:5555");
+  EXPECT_EQ(config.link.stream_address, "tcp://127.0.0.1:5556");
 }
 
 TEST_F(AgentConfigFileTest, FailedLoadLeavesTheConfigUntouched) {

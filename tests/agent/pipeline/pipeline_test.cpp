@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "agent/capture/fake_frame_source.hpp"
+#include "agent/pipeline/telemetry_recorder.hpp"
 #include "agent/servo/fake_servo_driver.hpp"
 
 namespace kapfix::agent {
@@ -23,16 +24,16 @@ class ScriptedProcessor : public FrameProcessor {
   std::chrono::milliseconds per_frame{0};
   std::uint64_t calls = 0;
 
-  void SetReference(const cv::Mat& /*frame*/) override {}
-  FixationLoop::Step Process(const cv::Mat& /*frame*/, const ServoTargets& /*current*/,
-                             double /*dt_s*/) override {
+  FrameOutcome Process(const CapturedFrame& /*frame*/, const ServoTargets& /*current*/,
+                       double /*dt_s*/) override {
     if (calls == stall_at) std::this_thread::sleep_for(stall);
     std::this_thread::sleep_for(per_frame);
     ++calls;
-    FixationLoop::Step step;
-    step.match.found = true;
-    step.targets = {pan_deg, 0.0};
-    return step;
+    FrameOutcome outcome;
+    outcome.step.match.found = true;
+    outcome.step.targets = {pan_deg, 0.0};
+    outcome.mode = AgentMode::kFixate;
+    return outcome;
   }
 };
 
@@ -67,7 +68,7 @@ TEST(PipelineTest, FreeRunningCaptureDropsStaleFramesAndCountsThem) {
   PipelineOptions options;
   options.frames = 30;
   options.lock_step = false;
-  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   const PipelineStats stats = pipeline.Run();
   EXPECT_EQ(stats.processed, 30u);
   EXPECT_GT(stats.dropped, 0u);
@@ -91,7 +92,7 @@ TEST(PipelineTest, LockStepDropsNothing) {
   PipelineOptions options;
   options.frames = 50;
   options.lock_step = true;
-  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   const PipelineStats stats = pipeline.Run();
   EXPECT_EQ(stats.processed, 50u);
   EXPECT_EQ(stats.dropped, 0u);
@@ -108,7 +109,7 @@ TEST(PipelineTest, WatchdogParksTheServosWhenAControlStepStalls) {
   options.frames = 10;
   options.lock_step = true;
   options.watchdog_ms = 150;
-  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   const PipelineStats stats = pipeline.Run();
   EXPECT_EQ(stats.watchdog_stalls, 1u);
   // Commands to the pan axis: Open parks it (0), the loop holds 5 deg, the watchdog parks it
@@ -135,7 +136,7 @@ TEST(PipelineTest, NoStallNoPark) {
   options.frames = 10;
   options.lock_step = true;
   options.watchdog_ms = 200;
-  Pipeline pipeline(*rig.source, *rig.servos, processor, rig.telemetry, options);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   EXPECT_EQ(pipeline.Run().watchdog_stalls, 0u);
 }
 

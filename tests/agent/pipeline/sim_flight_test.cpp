@@ -2,7 +2,10 @@
 // pipeline's threads in lock-step, the predictive controller.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 
 #include "agent/agent.hpp"
 #include "agent/pipeline/flight_report.hpp"
@@ -14,11 +17,26 @@ AgentConfig KiteConfig(ControllerKind controller) {
   AgentConfig config = BuiltInConfig(MotionKind::kKite);  // kapfix-agent without --config
   config.simulation.scene = std::string(KAPFIX_OPENCV_DATA_DIR) + "/aero1.jpg";
   config.controller.kind = controller;
+  // A private link per agent: tests run side by side.
+  static int agents = 0;
+  const std::string base = (std::filesystem::temp_directory_path() /
+                            ("kapfix_sim_flight_" + std::to_string(::getpid()) + "_" +
+                             std::to_string(++agents)))
+                               .string();
+  config.link.command_address = "ipc://" + base + ".cmd";
+  config.link.stream_address = "ipc://" + base + ".stream";
+  config.photos.dir = base + "_photos";
   return config;
 }
 
+constexpr AgentOptions Fast(std::uint64_t frames) {
+  return {.simulate = true, .real_time = false, .frames = frames};
+}
+
 FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
-  Agent agent(config, {.simulate = true, .frames = frames});
+  AgentOptions options = Fast(frames);
+  options.keep_telemetry = true;
+  Agent agent(config, options);
   EXPECT_TRUE(agent.simulated());
   const PipelineStats stats = agent.Run();
   EXPECT_EQ(stats.processed, frames);
@@ -45,7 +63,9 @@ TEST(SimFlightTest, ServosActuallyMove) {
   // Without the servos the swing (A = 100 px) leaves tens of pixels: a pipeline that
   // commanded nothing could not pass the test above. Here the servo angles must span the
   // swing's ±10 deg.
-  Agent agent(KiteConfig(ControllerKind::kPredictive), {.simulate = true, .frames = 100});
+  AgentOptions options = Fast(100);
+  options.keep_telemetry = true;
+  Agent agent(KiteConfig(ControllerKind::kPredictive), options);
   agent.Run();
   double lo = 0, hi = 0;
   for (const TelemetryRecord& r : agent.telemetry().records()) {
@@ -66,7 +86,7 @@ TEST(SimFlightTest, AMissingSceneIsAClearError) {
   AgentConfig config = KiteConfig(ControllerKind::kP);
   config.simulation.scene = "/nonexistent/scene.jpg";
   try {
-    Agent agent(config, {.simulate = true, .frames = 1});
+    Agent agent(config, Fast(1));
     FAIL() << "no error for a missing scene";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.jpg"), std::string::npos);

@@ -1,0 +1,116 @@
+#include "agent/commands/state_keeper.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "agent/commands/settings_messages.hpp"
+#include "agent/downlink/telemetry_publisher.hpp"
+
+namespace kapfix::agent {
+
+StateKeeper::StateKeeper(AgentConfig settings, StreamSink& sink, bool simulated,
+                         std::function<std::uint64_t()> photos_stored)
+    : settings_(std::move(settings)),
+      sink_(sink),
+      simulated_(simulated),
+      photos_stored_(std::move(photos_stored)) {}
+
+AgentConfig StateKeeper::settings() const {
+  std::lock_guard lock(mutex_);
+  return settings_;
+}
+
+void StateKeeper::SetSettings(AgentConfig settings) {
+  {
+    std::lock_guard lock(mutex_);
+    settings_ = std::move(settings);
+  }
+  PublishState();
+}
+
+kapfix::v1::AgentState StateKeeper::StateLocked() const {
+  kapfix::v1::AgentState state;
+  state.set_mode(ToProto(mode_));
+  FillSettings(settings_, &state);
+  state.set_slice(static_cast<std::uint32_t>(slice_));
+  if (calibration_) *state.mutable_calibration() = *calibration_;
+  if (last_slice_report_) *state.mutable_last_slice_report() = *last_slice_report_;
+  if (last_pss_report_) *state.mutable_last_pss_report() = *last_pss_report_;
+  state.set_simulated(simulated_);
+  state.set_agent_version(KAPFIX_VERSION);  // the project version, from CMake
+  return state;
+}
+
+kapfix::v1::AgentState StateKeeper::State() const {
+  kapfix::v1::AgentState state;
+  {
+    std::lock_guard lock(mutex_);
+    state = StateLocked();
+  }
+  // Outside the lock: it reads the disk.
+  if (photos_stored_) state.set_photos_stored(photos_stored_());
+  return state;
+}
+
+void StateKeeper::PublishState() { sink_.Publish(State()); }
+
+bool StateKeeper::RepublishSliceReport() {
+  std::optional<kapfix::v1::SliceReport> report;
+  {
+    std::lock_guard lock(mutex_);
+    report = last_slice_report_;
+  }
+  if (!report) return false;
+  sink_.Publish(*report);
+  return true;
+}
+
+void StateKeeper::OnModeChanged(AgentMode mode, int slice) {
+  {
+    std::lock_guard lock(mutex_);
+    mode_ = mode;
+    slice_ = slice;
+  }
+  PublishState();
+}
+
+void StateKeeper::OnSliceReport(const kapfix::v1::SliceReport& report) {
+  if (report.finished()) {
+    std::lock_guard lock(mutex_);
+    last_slice_report_ = report;
+  }
+  sink_.Publish(report);
+}
+
+void StateKeeper::OnPssReport(const kapfix::v1::PssReport& report) {
+  if (report.finished()) {
+    std::lock_guard lock(mutex_);
+    last_pss_report_ = report;
+  }
+  sink_.Publish(report);
+}
+
+void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& report,
+                                      const std::optional<LensCalibration>& applied) {
+  if (report.finished()) {
+    std::lock_guard lock(mutex_);
+    calibration_ = report;
+    if (applied) {
+      for (LensProfile& profile : settings_.lenses) {
+        if (profile.name != report.lens_profile()) continue;
+        profile.deg_per_px_pan = applied->pan_deg_per_px;
+        profile.deg_per_px_tilt = applied->tilt_deg_per_px;
+      }
+    }
+  }
+  sink_.Publish(report);
+}
+
+void StateKeeper::OnFreeSwingRecorded(const std::string& path, const std::string& error) {
+  if (error.empty()) {
+    spdlog::info("free swing recording: {}", path);
+  } else {
+    spdlog::error("free swing recording failed: {}", error);
+  }
+}
+
+}  // namespace kapfix::agent

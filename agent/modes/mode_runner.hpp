@@ -1,0 +1,106 @@
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "agent/config/agent_config.hpp"
+#include "agent/modes/agent_mode.hpp"
+#include "agent/modes/calibration_run.hpp"
+#include "agent/modes/mode_events.hpp"
+#include "agent/pipeline/frame_processor.hpp"
+#include "common/control/predictive_controller.hpp"
+#include "common/fixation/fixation_loop.hpp"
+#include "common/selection/patch_size_selection_run.hpp"
+#include "common/selection/slice_selection_run.hpp"
+
+namespace kapfix::agent {
+
+struct ModeRunnerOptions {
+  AgentMode start_mode = AgentMode::kFixate;  // entered on the first frame
+  SwingDeadline default_deadline;             // PSS, SSP and recording without their own
+  PredictiveOptions predictive;               // the swing model of the predictive controller
+  int actuation_delay_frames = 2;             // [frames] calibration waits this + 1 per move
+  double frame_period_s = 1.0 / 30;           // [s] camera time of one frame (deadlines)
+  std::string recordings_dir;                 // free-swing recordings; empty = none allowed
+};
+
+// The agent's modes (SPEC §4) on the control thread: one FrameProcessor that runs idle,
+// calibrate, PSS, SSP, fixate, follow or free-swing recording on each frame. Mode switches,
+// settings and the slice are requested from any thread and applied between frames, so the
+// fixation loop, the selection runs and the calibration are only ever touched by the control
+// thread. Results leave through ModeEvents.
+class ModeRunner : public FrameProcessor {
+ public:
+  // `settings` must be IsValid. Throws std::runtime_error when its strategy or controller
+  // cannot be built.
+  ModeRunner(const AgentConfig& settings, ModeRunnerOptions options, ModeEvents& events);
+
+  FrameOutcome Process(const CapturedFrame& frame, const ServoTargets& current,
+                       double dt_s) override;
+
+  // Any thread; applied before the next frame. A later request of the same kind replaces an
+  // earlier one not yet applied.
+  void RequestMode(AgentMode mode, std::optional<SwingDeadline> deadline = std::nullopt);
+  void RequestSettings(const AgentConfig& settings);  // must be IsValid
+  void RequestSlice(int slice);                       // [1..slice_count]
+
+  AgentMode mode() const { return mode_.load(); }
+  int slice() const { return slice_.load(); }
+
+ private:
+  struct Pending {
+    std::optional<std::pair<AgentMode, SwingDeadline>> mode;
+    std::optional<AgentConfig> settings;
+    std::optional<int> slice;
+  };
+
+  void ApplyPending(const CapturedFrame& frame, const ServoTargets& current);
+  void Rebuild();
+  void Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
+             const ServoTargets& current);
+  void SetMode(AgentMode mode);
+  bool SwingDeadlineReached(std::uint64_t index) const;
+  FrameOutcome Fixate(const CapturedFrame& frame, const ServoTargets& current, double dt_s);
+  FrameOutcome SelectSlice(const cv::Mat& plane, std::uint64_t index);
+  FrameOutcome SelectPatchSize(const cv::Mat& plane, std::uint64_t index);
+  FrameOutcome Calibrate(const cv::Mat& plane);
+  FrameOutcome RecordFreeSwing(const cv::Mat& plane, const CapturedFrame& frame);
+  FrameOutcome Hold(AgentMode mode) const;
+  cv::Rect SlicePatchRect(cv::Size frame) const;
+  FixationOptions MakeFixationOptions(AgentMode mode) const;
+
+  ModeRunnerOptions options_;
+  ModeEvents& events_;
+  std::atomic<AgentMode> mode_{AgentMode::kIdle};
+  std::atomic<int> slice_{0};
+
+  std::mutex pending_mutex_;
+  Pending pending_;
+  bool started_ = false;
+
+  // Control thread only.
+  AgentConfig settings_;
+  std::shared_ptr<const SearchStrategy> strategy_;
+  // The strategy a selection run or calibration was started with: a settings change during
+  // the run replaces strategy_, not this one.
+  std::shared_ptr<const SearchStrategy> run_strategy_;
+  std::unique_ptr<FixationLoop> loop_;
+  cv::Mat reference_frame_;  // fixate / follow: the frame the reference was taken from
+  std::uint64_t reference_index_ = 0;  // its index
+  ServoTargets hold_{};      // [deg] where the servos stay during a free swing
+  SwingDeadline deadline_;
+  std::uint64_t swing_start_index_ = 0;
+  std::optional<SliceSelectionRun> slice_run_;
+  std::optional<PatchSizeSelectionRun> pss_run_;
+  std::optional<CalibrationRun> calibration_;
+  int calibration_progress_ = -1;  // moves_done last reported
+  std::vector<std::pair<std::int64_t, double>> recording_;  // [µs, px] free swing samples
+  cv::Mat previous_plane_;
+  std::optional<SampleSet> recording_samples_;
+};
+
+}  // namespace kapfix::agent

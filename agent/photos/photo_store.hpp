@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "kapfix/v1/photo.pb.h"
+
+namespace kapfix::agent {
+
+// The agent's photo folder (SPEC §4): each photo is a JPEG and a JSON sidecar holding its
+// PhotoMetadata, both written atomically (temporary file, fsync, rename). The JPEG goes first
+// and is removed again if its sidecar cannot be written, so the folder only ever holds
+// complete pairs. Thread-safe.
+class PhotoStore {
+ public:
+  explicit PhotoStore(std::filesystem::path dir);
+
+  // Whether a photo of about `bytes` can be stored now: the folder exists (it is created) and
+  // is writable, and the disk has room for twice that. The reason names the folder.
+  bool CheckWritable(std::uintmax_t bytes, std::string* error) const;
+
+  // Encodes `image` (BGR) as JPEG and stores it with `metadata`, whose file_name, width,
+  // height and format are filled here; returns the completed metadata and the file's bytes.
+  // Throws std::runtime_error naming the file and the reason (disk full, no permission).
+  kapfix::v1::PhotoMetadata Save(const cv::Mat& image, kapfix::v1::PhotoMetadata metadata,
+                                 std::string* jpeg);
+
+  // Photos whose capture time is at or after `since_us`, oldest first.
+  std::vector<kapfix::v1::PhotoMetadata> ListSince(std::int64_t since_us) const;
+  // The file of a stored photo; throws std::runtime_error when it cannot be read.
+  std::string ReadFile(const std::string& file_name) const;
+  std::uint64_t count() const;
+  const std::filesystem::path& dir() const { return dir_; }
+
+  // The sidecar's path for a photo file.
+  static std::filesystem::path SidecarPath(const std::filesystem::path& photo);
+
+ private:
+  std::filesystem::path dir_;
+  mutable std::mutex mutex_;
+  std::uint64_t next_serial_ = 1;
+};
+
+}  // namespace kapfix::agent

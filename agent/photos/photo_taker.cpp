@@ -1,0 +1,160 @@
+#include "agent/photos/photo_taker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace kapfix::agent {
+namespace {
+
+// Photos queued for the disk at most; beyond this the disk is too slow and a photo is refused
+// (logged) rather than memory growing.
+constexpr std::size_t kMaxQueuedPhotos = 8;
+
+std::int64_t WallClockUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+PhotoTaker::PhotoTaker(PhotoStore& store, StreamSink& sink, std::function<std::string()> lens)
+    : store_(store), sink_(sink), lens_(std::move(lens)), thread_([this] { WriterThread(); }) {}
+
+PhotoTaker::~PhotoTaker() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+bool PhotoTaker::Request(const std::string& note, std::string* error) {
+  // About 3 bytes per pixel is more than a JPEG at quality 95 ever needs.
+  constexpr std::uintmax_t kRoughPhotoBytes = 3 * 1024 * 1024;
+  if (!store_.CheckWritable(kRoughPhotoBytes, error)) return false;
+  std::lock_guard lock(mutex_);
+  if (jobs_.size() >= kMaxQueuedPhotos) {
+    if (error) *error = "photo refused: " + std::to_string(jobs_.size()) + " photos still being written";
+    return false;
+  }
+  requested_note_ = note;
+  return true;
+}
+
+void PhotoTaker::SetInterval(double seconds) {
+  std::lock_guard lock(mutex_);
+  interval_s_ = seconds;
+}
+
+void PhotoTaker::Resend(std::int64_t since_us) {
+  {
+    std::lock_guard lock(mutex_);
+    jobs_.push_back(Job{cv::Mat(), {}, since_us});
+  }
+  wake_.notify_one();
+}
+
+void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcome*/,
+                        const TelemetryRecord& record) {
+  std::optional<std::string> note;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(note, requested_note_);
+    if (!note && interval_s_ > 0) {
+      const auto period_us = static_cast<std::int64_t>(std::llround(interval_s_ * 1e6));
+      if (!last_auto_us_ || frame.capture_time_us - *last_auto_us_ >= period_us) {
+        if (last_auto_us_) note = "every " + std::to_string(interval_s_) + " s";
+        last_auto_us_ = frame.capture_time_us;
+      }
+    }
+    if (!note) return;
+    if (jobs_.size() >= kMaxQueuedPhotos) {
+      ++failed_;
+      spdlog::error("photo of frame {} dropped: the disk is not keeping up", frame.index);
+      return;
+    }
+  }
+  kapfix::v1::PhotoMetadata metadata;
+  metadata.set_capture_time_us(WallClockUs());
+  auto* d = metadata.mutable_displacement();
+  d->set_x_px(static_cast<std::int32_t>(std::lround(record.displacement_x_px)));
+  d->set_y_px(static_cast<std::int32_t>(std::lround(record.displacement_y_px)));
+  d->set_x_subpx(static_cast<float>(record.displacement_x_px - std::round(record.displacement_x_px)));
+  d->set_y_subpx(static_cast<float>(record.displacement_y_px - std::round(record.displacement_y_px)));
+  metadata.set_pan_angle_deg(static_cast<float>(record.angle_pan_deg));
+  metadata.set_tilt_angle_deg(static_cast<float>(record.angle_tilt_deg));
+  metadata.set_slice(static_cast<std::uint32_t>(record.slice));
+  metadata.set_lens_profile(lens_ ? lens_() : std::string());
+  metadata.set_confidence(static_cast<float>(record.confidence));
+  Job job{frame.image.clone(), std::move(metadata), 0};
+  {
+    std::lock_guard lock(mutex_);
+    jobs_.push_back(std::move(job));
+  }
+  wake_.notify_one();
+}
+
+std::vector<kapfix::v1::Photo> PhotoTaker::Chunks(const kapfix::v1::PhotoMetadata& metadata,
+                                                  const std::string& bytes) {
+  std::vector<kapfix::v1::Photo> chunks;
+  std::size_t offset = 0;
+  do {
+    const std::size_t size = std::min(kChunkBytes, bytes.size() - offset);
+    kapfix::v1::Photo photo;
+    photo.mutable_header()->set_capture_time_us(metadata.capture_time_us());
+    *photo.mutable_metadata() = metadata;
+    photo.set_data(bytes.substr(offset, size));
+    photo.set_offset_bytes(offset);
+    photo.set_total_bytes(bytes.size());
+    chunks.push_back(std::move(photo));
+    offset += size;
+  } while (offset < bytes.size());
+  return chunks;
+}
+
+void PhotoTaker::Offer(const kapfix::v1::PhotoMetadata& metadata, const std::string& bytes) {
+  for (const kapfix::v1::Photo& chunk : Chunks(metadata, bytes)) {
+    if (!sink_.Publish(chunk)) {
+      spdlog::warn("photo {} not sent now (link queue full); it stays on disk", metadata.file_name());
+      return;
+    }
+  }
+}
+
+void PhotoTaker::WriterThread() {
+  std::unique_lock lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+    if (jobs_.empty()) return;  // stopping, nothing left to write
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    lock.unlock();
+    if (job.image.empty()) {
+      for (const auto& metadata : store_.ListSince(job.resend_since_us)) {
+        try {
+          Offer(metadata, store_.ReadFile(metadata.file_name()));
+        } catch (const std::exception& e) {
+          spdlog::warn("photo {} not resent: {}", metadata.file_name(), e.what());
+        }
+      }
+    } else {
+      try {
+        std::string bytes;
+        const kapfix::v1::PhotoMetadata saved = store_.Save(job.image, job.metadata, &bytes);
+        ++saved_;
+        spdlog::info("photo {} saved ({} KiB)", saved.file_name(), bytes.size() / 1024);
+        Offer(saved, bytes);
+      } catch (const std::exception& e) {
+        ++failed_;
+        spdlog::error("photo not saved: {}", e.what());
+      }
+    }
+    lock.lock();
+  }
+}
+
+}  // namespace kapfix::agent

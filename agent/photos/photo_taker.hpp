@@ -1,0 +1,75 @@
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "agent/photos/photo_store.hpp"
+#include "agent/pipeline/step_observer.hpp"
+#include "agent/server/stream_sink.hpp"
+
+namespace kapfix::agent {
+
+// Takes the stabilised photos (SPEC §4): on command, or every N seconds of camera time. The
+// control thread only copies the frame; a writer thread stores it (PhotoStore: disk first),
+// then offers it to the station as Photo chunks. Photos taken while the link is down stay on
+// disk and are sent again on request (Resend).
+class PhotoTaker : public StepObserver {
+ public:
+  // [bytes] each Photo message carries at most this much of the file, well under the
+  // station's receive limit.
+  static constexpr std::size_t kChunkBytes = 256 * 1024;
+
+  // `lens` names the lens profile in use, read at each photo.
+  PhotoTaker(PhotoStore& store, StreamSink& sink, std::function<std::string()> lens);
+  ~PhotoTaker() override;  // joins the writer; queued photos are written first
+  PhotoTaker(const PhotoTaker&) = delete;
+  PhotoTaker& operator=(const PhotoTaker&) = delete;
+
+  void OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
+              const TelemetryRecord& record) override;
+
+  // Any thread. A photo of the next frame; false (and why) when the store cannot take one now.
+  bool Request(const std::string& note, std::string* error);
+  void SetInterval(double seconds);  // [s] 0 = off
+  // Publishes again every stored photo taken at or after `since_us`.
+  void Resend(std::int64_t since_us);
+
+  std::uint64_t saved() const { return saved_.load(); }
+  std::uint64_t failed() const { return failed_.load(); }
+
+  // The Photo messages of one file, in order.
+  static std::vector<kapfix::v1::Photo> Chunks(const kapfix::v1::PhotoMetadata& metadata,
+                                               const std::string& bytes);
+
+ private:
+  struct Job {
+    cv::Mat image;  // empty: a resend
+    kapfix::v1::PhotoMetadata metadata;
+    std::int64_t resend_since_us = 0;
+  };
+  void WriterThread();
+  void Offer(const kapfix::v1::PhotoMetadata& metadata, const std::string& bytes);
+
+  PhotoStore& store_;
+  StreamSink& sink_;
+  std::function<std::string()> lens_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Job> jobs_;
+  bool stop_ = false;
+  std::optional<std::string> requested_note_;
+  double interval_s_ = 0;
+  std::optional<std::int64_t> last_auto_us_;  // control thread only
+  std::atomic<std::uint64_t> saved_{0};
+  std::atomic<std::uint64_t> failed_{0};
+  std::thread thread_;
+};
+
+}  // namespace kapfix::agent

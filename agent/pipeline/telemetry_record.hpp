@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "agent/modes/agent_mode.hpp"
+
+namespace kapfix::agent {
+
+// One control step, as kapfix.v1.Telemetry carries it.
+struct TelemetryRecord {
+  std::uint64_t index = 0;           // frame index from the FrameSource
+  std::int64_t capture_time_us = 0;  // [µs] the frame's capture time
+  bool found = false;                // the matcher found the patch
+  double displacement_x_px = 0;      // [px] measured, stored-reference convention
+  double displacement_y_px = 0;      // [px]
+  double confidence = 0;             // [0, 1]
+  bool lock_lost = false;
+  double target_pan_deg = 0;  // [deg] what the controller asked for
+  double target_tilt_deg = 0;
+  double angle_pan_deg = 0;  // [deg] what the limited driver commanded
+  double angle_tilt_deg = 0;
+  double loop_latency_ms = 0;  // [ms] frame taken → servos commanded (wall clock)
+  AgentMode mode = AgentMode::kIdle;
+  int slice = 0;                // [1..slice_count] slice in use; 0 = none
+  std::int64_t distance = 0;    // [grey level²] SSD at the match
+  std::optional<std::uint64_t> reference_frame;  // fixate: index of the frame whose view is held
+  // [px] simulation only: the view's true residual offset from the reference frame's view.
+  std::optional<double> view_offset_x_px;
+  std::optional<double> view_offset_y_px;
+};
+
+}  // namespace kapfix::agent
