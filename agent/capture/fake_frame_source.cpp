@@ -17,6 +17,7 @@ FakeFrameSource::FakeFrameSource(std::vector<cv::Mat> frames, std::int64_t frame
 }
 
 bool FakeFrameSource::Open(std::string* error) {
+  ++open_attempts_;
   if (fail_open_) {
     if (error) *error = "fake camera: not found (as told)";
     return false;

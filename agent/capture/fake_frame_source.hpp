@@ -33,7 +33,8 @@ class FakeFrameSource : public FrameSource {
 
   double gain_db() const { return gain_db_; }          // [dB] last accepted
   double exposure_us() const { return exposure_us_; }  // [µs] last accepted
-  int open_count() const { return open_count_; }
+  int open_count() const { return open_count_; }        // successful Opens
+  int open_attempts() const { return open_attempts_; }  // every Open, failed ones too
 
  private:
   std::vector<cv::Mat> frames_;
@@ -43,6 +44,7 @@ class FakeFrameSource : public FrameSource {
   bool fail_open_ = false;
   int fail_grabs_ = 0;
   int open_count_ = 0;
+  int open_attempts_ = 0;
   double gain_db_ = 0;
   double exposure_us_ = 0;
 };

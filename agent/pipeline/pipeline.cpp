@@ -38,11 +38,13 @@ PipelineStats Pipeline::Run() {
   });
   std::uint64_t grab_errors = 0;
   std::string capture_error;
-  std::thread capture([this, &grab_errors, &capture_error] {
+  std::uint64_t reconnects = 0;
+  std::thread capture([this, &grab_errors, &capture_error, &reconnects, &watchdog] {
     PipelineStats capture_stats;
-    CaptureThread(&capture_stats);
+    CaptureThread(&capture_stats, [&watchdog] { watchdog.Disarm(); });
     grab_errors = capture_stats.grab_errors;
     capture_error = capture_stats.error;
+    reconnects = capture_stats.camera_reconnects;
   });
   ControlThread(&stats, [&watchdog] { watchdog.Kick(); });
   stats.wall_s = MsSince(start) / 1000.0;
@@ -53,6 +55,7 @@ PipelineStats Pipeline::Run() {
   stats.watchdog_stalls = watchdog.stall_count();
   stats.dropped = slot_.dropped();
   stats.grab_errors = grab_errors;
+  stats.camera_reconnects = reconnects;
   if (stats.error.empty()) stats.error = capture_error;
   std::string error;
   std::lock_guard lock(servo_mutex_);
@@ -65,7 +68,34 @@ void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
   camera_changes_.push_back(std::move(change));
 }
 
-void Pipeline::CaptureThread(PipelineStats* stats) {
+bool Pipeline::Reconnect(const std::string& reason) {
+  spdlog::error("camera lost: {}; the servos hold, reconnecting", reason);
+  const auto lost = std::chrono::steady_clock::now();
+  int wait_ms = options_.retry_initial_ms;
+  for (int attempt = 1; !stop_; ++attempt) {
+    // Sleep in short steps so that Stop() is not held up by a long back-off.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+    while (!stop_ && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (stop_) break;
+    std::string error;
+    if (source_.Open(&error)) {
+      spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0,
+                   attempt, source_.Describe());
+      return true;
+    }
+    spdlog::warn("camera reconnect attempt {} failed: {}; next in {} ms", attempt, error,
+                 std::min(2 * wait_ms, options_.retry_max_ms));
+    wait_ms = std::min(2 * wait_ms, options_.retry_max_ms);
+  }
+  return false;
+}
+
+void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& on_outage) {
+  // A reopened camera numbers its frames from 0 again; the flight's numbering must go on.
+  std::uint64_t index_base = 0;
+  std::optional<std::uint64_t> last_index;
   while (!stop_) {
     std::vector<std::function<void(FrameSource&)>> changes;
     {
@@ -76,12 +106,20 @@ void Pipeline::CaptureThread(PipelineStats* stats) {
     CapturedFrame frame;
     std::string error;
     if (!source_.Grab(&frame, &error)) {
-      // The agent's reconnect with back-off is not built yet: a lost camera ends the run.
       ++stats->grab_errors;
-      stats->error = error;
-      spdlog::error("capture: {}", error);
-      break;
+      if (!options_.reconnect_camera) {
+        stats->error = error;
+        spdlog::error("capture: {}", error);
+        break;
+      }
+      on_outage();
+      if (!Reconnect(error)) break;
+      ++stats->camera_reconnects;
+      if (last_index) index_base = *last_index + 1;
+      continue;
     }
+    frame.index += index_base;
+    last_index = frame.index;
     const std::uint64_t index = frame.index;
     slot_.Put(std::move(frame));
     if (options_.lock_step && !slot_.WaitDone(index)) break;

@@ -32,6 +32,13 @@ struct PipelineOptions {
   // command sent that many frames earlier (park before the first command).
   int actuation_delay_frames = 2;
   double default_frame_period_s = 1.0 / 30;  // [s] dt for the first frame
+  // A lost camera (Grab fails): the servos hold where they are (the watchdog does not count
+  // the outage as a stall), Open is retried after retry_initial_ms, doubling up to
+  // retry_max_ms, until it succeeds or Stop(); then the flight resumes. Off: a lost camera
+  // ends the run.
+  bool reconnect_camera = true;
+  int retry_initial_ms = 100;  // [ms]
+  int retry_max_ms = 5000;     // [ms]
   // Simulation truth for telemetry: the view's residual offset of a frame, by index.
   std::function<std::optional<cv::Point2d>(std::uint64_t)> view_offset;
 };
@@ -40,6 +47,7 @@ struct PipelineStats {
   std::uint64_t processed = 0;     // control steps run
   std::uint64_t dropped = 0;       // stale frames replaced before control took them
   std::uint64_t grab_errors = 0;   // failed Grabs
+  std::uint64_t camera_reconnects = 0;  // outages the camera came back from
   std::uint64_t servo_errors = 0;  // refused or failed servo commands
   std::uint64_t watchdog_stalls = 0;
   double wall_s = 0;  // [s] from start to the last step
@@ -66,7 +74,9 @@ class Pipeline {
   void RequestCameraChange(std::function<void(FrameSource&)> change);
 
  private:
-  void CaptureThread(PipelineStats* stats);
+  void CaptureThread(PipelineStats* stats, const std::function<void()>& on_outage);
+  // Retries Open with back-off until it succeeds (true) or Stop() (false).
+  bool Reconnect(const std::string& reason);
   void ControlThread(PipelineStats* stats, const std::function<void()>& kick);
   ServoTargets SeenThrough(std::uint64_t index) const;
 

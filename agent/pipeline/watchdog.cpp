@@ -20,6 +20,11 @@ void Watchdog::Kick() {
   fired_ = false;
 }
 
+void Watchdog::Disarm() {
+  std::lock_guard lock(mutex_);
+  armed_ = false;
+}
+
 void Watchdog::Stop() {
   {
     std::lock_guard lock(mutex_);

@@ -23,6 +23,9 @@ class Watchdog {
   Watchdog& operator=(const Watchdog&) = delete;
 
   void Kick();
+  // Until the next Kick, no stall is counted (the camera is gone: nothing to control, the
+  // servos hold).
+  void Disarm();
   // Stops the thread (also done by the destructor); no on_stall after it returns.
   void Stop();
   std::uint64_t stall_count() const;

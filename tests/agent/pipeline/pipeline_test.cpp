@@ -140,5 +140,62 @@ TEST(PipelineTest, NoStallNoPark) {
   EXPECT_EQ(pipeline.Run().watchdog_stalls, 0u);
 }
 
+TEST(PipelineTest, ALostCameraIsReopenedAndTheFlightResumes) {
+  Rig rig;
+  ScriptedProcessor processor;
+  rig.source->FailNextGrabs(3);
+  PipelineOptions options;
+  options.frames = 10;
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 10u);
+  EXPECT_EQ(stats.grab_errors, 3u);
+  EXPECT_EQ(stats.camera_reconnects, 3u);
+  EXPECT_EQ(rig.source->open_count(), 4);  // the first Open and one per outage
+  EXPECT_TRUE(stats.error.empty()) << stats.error;
+  // The camera numbers its frames from 0 again after each Open; the flight's numbering goes on.
+  const auto records = rig.telemetry.records();
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    EXPECT_GT(records[i].index, records[i - 1].index);
+  }
+}
+
+TEST(PipelineTest, ALongCameraOutageIsNotAControlStall) {
+  Rig rig;
+  ScriptedProcessor processor;
+  rig.source->FailNextGrabs(1);
+  rig.source->FailOpen(true);  // stays unplugged until Stop
+  PipelineOptions options;
+  options.lock_step = true;
+  options.watchdog_ms = 50;
+  options.retry_initial_ms = 5;
+  options.retry_max_ms = 20;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  std::thread stopper([&pipeline] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    pipeline.Stop();
+  });
+  const PipelineStats stats = pipeline.Run();
+  stopper.join();
+  EXPECT_EQ(stats.watchdog_stalls, 0u) << "the servos must hold, not park, while the camera is away";
+  EXPECT_GE(rig.source->open_attempts(), 3) << "reconnection was retried";
+  EXPECT_EQ(stats.camera_reconnects, 0u);
+}
+
+TEST(PipelineTest, WithoutReconnectionALostCameraEndsTheRunWithItsReason) {
+  Rig rig;
+  ScriptedProcessor processor;
+  rig.source->FailNextGrabs(1);
+  PipelineOptions options;
+  options.frames = 10;
+  options.reconnect_camera = false;
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 0u);
+  EXPECT_FALSE(stats.error.empty());
+}
+
 }  // namespace
 }  // namespace kapfix::agent
