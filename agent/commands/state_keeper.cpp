@@ -29,6 +29,7 @@ void StateKeeper::SetSettings(AgentConfig settings) {
 
 kapfix::v1::AgentState StateKeeper::StateLocked() const {
   kapfix::v1::AgentState state;
+  state.mutable_header()->set_agent_id(settings_.agent_id);
   state.set_mode(ToProto(mode_));
   FillSettings(settings_, &state);
   state.set_slice(static_cast<std::uint32_t>(slice_));
