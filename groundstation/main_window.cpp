@@ -45,6 +45,11 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   setWindowTitle(tr("kapfix station"));
   setCentralWidget(video_);
   setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
+  // The side panels run the full height: the slice table and its graphs need it more than
+  // the time graphs need the full width.
+  setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+  setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
+  resize(1600, 1000);
 
   auto* plots_dock = Dock(this, tr("Graphs"), QStringLiteral("graphsDock"), plots_);
   addDockWidget(Qt::BottomDockWidgetArea, plots_dock);
@@ -57,8 +62,8 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   tabifyDockWidget(settings_dock, photos_dock);
   tabifyDockWidget(photos_dock, events_dock);
   ssp_dock->raise();
-  resizeDocks({ssp_dock}, {520}, Qt::Horizontal);
-  resizeDocks({plots_dock}, {330}, Qt::Vertical);
+  resizeDocks({ssp_dock}, {540}, Qt::Horizontal);
+  resizeDocks({plots_dock}, {400}, Qt::Vertical);
   statusBar()->addWidget(status_, 1);
 
   auto* toolbar = addToolBar(tr("Station"));
@@ -121,9 +126,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
               plots_->pauseAction(), plots_->followAction()});
 
   const QSettings settings;
-  if (!restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray())) {
-    resize(1600, 1000);
-  }
+  restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
   restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
 }
 

@@ -24,7 +24,7 @@ const std::array<CurveStyle, TelemetryPlots::kCurveCount> kCurves = {{
     {0, false, QT_TRANSLATE_NOOP("TelemetryPlots", "y [px]"), QColor(214, 39, 40), Qt::SolidLine},
     {1, false, QT_TRANSLATE_NOOP("TelemetryPlots", "confidence"), QColor(44, 160, 44),
      Qt::SolidLine},
-    {1, true, QT_TRANSLATE_NOOP("TelemetryPlots", "distance (right)"), QColor(148, 103, 189),
+    {1, true, QT_TRANSLATE_NOOP("TelemetryPlots", "SSD distance (right)"), QColor(148, 103, 189),
      Qt::SolidLine},
     {2, false, QT_TRANSLATE_NOOP("TelemetryPlots", "pan cmd [deg]"), QColor(255, 127, 14),
      Qt::DashLine},
@@ -37,9 +37,9 @@ const std::array<CurveStyle, TelemetryPlots::kCurveCount> kCurves = {{
 }};
 
 const std::array<const char*, 3> kRectTitles = {
-    QT_TRANSLATE_NOOP("TelemetryPlots", "displacement [px]"),
-    QT_TRANSLATE_NOOP("TelemetryPlots", "confidence [0..1]"),
-    QT_TRANSLATE_NOOP("TelemetryPlots", "servo [deg]"),
+    QT_TRANSLATE_NOOP("TelemetryPlots", "[px]"),
+    QT_TRANSLATE_NOOP("TelemetryPlots", "[0..1]"),
+    QT_TRANSLATE_NOOP("TelemetryPlots", "[deg]"),
 };
 
 double Value(const TelemetrySample& sample, int curve) {
@@ -107,13 +107,19 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     rect->axis(QCPAxis::atBottom)->setLabel(i == 2 ? tr("time [s]") : QString());
     rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
     auto* legend = new QCPLegend;
-    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignLeft);
+    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
     legend->setLayer(QStringLiteral("legend"));
-    legend->setBrush(QColor(255, 255, 255, 200));
+    legend->setBrush(QColor(255, 255, 255, 210));
+    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);  // one row: keeps the curves visible
+    QFont small = font();
+    small.setPointSizeF(small.pointSizeF() * 0.85);
+    legend->setFont(small);
+    legend->setRowSpacing(0);
+    legend->setColumnSpacing(6);
     rects[static_cast<std::size_t>(i)] = rect;
   }
   rects[1]->axis(QCPAxis::atRight)->setVisible(true);
-  rects[1]->axis(QCPAxis::atRight)->setLabel(tr("distance"));
+  rects[1]->axis(QCPAxis::atRight)->setNumberFormat(QStringLiteral("gb"));
   rects[1]->axis(QCPAxis::atLeft)->setRange(0, 1.05);
   for (int i = 0; i < 3; ++i) {
     connect(rects[static_cast<std::size_t>(i)]->axis(QCPAxis::atBottom),

@@ -4,7 +4,6 @@
 #include <QHeaderView>
 #include <QPointer>
 #include <QSettings>
-#include <QSplitter>
 #include <QToolButton>
 #include <QVBoxLayout>
 
@@ -61,12 +60,16 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
 
   table_->setObjectName(QStringLiteral("sliceTable"));
   table_->setHorizontalHeaderLabels(
-      {tr("Slice"), tr("DC"), tr("DC hyst."), tr("FFT /1000"), tr("Single shot"), tr("Rank")});
+      {tr("Slice"), tr("DC"), tr("DC hyst."), tr("FFT /1000"), tr("1-shot"), tr("Rank")});
   table_->verticalHeader()->hide();
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
+  // Room for the thesis's nine slices and the header, no more: the graphs get the rest.
+  table_->setMinimumHeight(11 * (table_->fontMetrics().height() + 6));
+  table_->setMaximumHeight(11 * (table_->fontMetrics().height() + 6));
   table_->setToolTip(tr("Double-click a slice to fixate on it"));
 
   auto* buttons = new QHBoxLayout;
@@ -77,21 +80,12 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   message_->setObjectName(QStringLiteral("sspMessage"));
   message_->setWordWrap(true);
 
-  auto* table_box = new QWidget(this);
-  auto* table_layout = new QVBoxLayout(table_box);
-  table_layout->setContentsMargins(0, 0, 0, 0);
-  table_layout->addWidget(table_, 1);
-  table_layout->addLayout(buttons);
-  table_layout->addWidget(message_);
-  auto* splitter = new QSplitter(Qt::Vertical, this);
-  splitter->addWidget(table_box);
-  splitter->addWidget(graphs_);
-  splitter->setStretchFactor(0, 1);
-  splitter->setStretchFactor(1, 1);
-
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(top);
-  layout->addWidget(splitter, 1);
+  layout->addWidget(table_);
+  layout->addLayout(buttons);
+  layout->addWidget(message_);
+  layout->addWidget(graphs_, 1);
 
   connect(run_, &QAction::triggered, this, &SspPanel::runSsp);
   connect(confirm_, &QAction::triggered, this, [this] {

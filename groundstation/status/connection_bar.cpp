@@ -18,12 +18,15 @@ ConnectionBar::ConnectionBar(ZmqAgentClient& client, QWidget* parent)
   host_->setPlaceholderText(tr("agent host"));
   host_->setToolTip(tr("Host name or address of the kapfix-agent (Ctrl+L)"));
   host_->setMinimumWidth(160);
+  host_->setMaximumWidth(280);
   for (QSpinBox* port : {command_port_, stream_port_}) {
     port->setRange(1, 65535);
     port->setButtonSymbols(QAbstractSpinBox::NoButtons);
+    port->setFixedWidth(port->fontMetrics().horizontalAdvance(QStringLiteral("655350")) + 12);
   }
   command_port_->setToolTip(tr("Agent command port (ROUTER)"));
   stream_port_->setToolTip(tr("Agent stream port (PUB)"));
+  setSizePolicy(QSizePolicy::Maximum, QSizePolicy::Fixed);
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(new QLabel(tr("Agent"), this));
