@@ -50,7 +50,7 @@ SettingRow::SettingRow(const Spec& spec, const QString& help, QWidget* parent)
     }
     case Kind::kText: {
       auto* edit = new QLineEdit(this);
-      connect(edit, &QLineEdit::editingFinished, this, [this, edit, emit_edit] {
+      connect(edit, &QLineEdit::editingFinished, this, [edit, emit_edit] {
         if (edit->isModified()) emit_edit();
         edit->setModified(false);
       });
