@@ -1,0 +1,97 @@
+// kapfix-station: the operator's ground station (SPEC §6, issue 4). Parses the command line
+// and wires the parts together; each part lives in its own folder.
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QSettings>
+#include <cstdio>
+#include <optional>
+
+#include "groundstation/client/agent_address.hpp"
+#include "groundstation/client/link_resync.hpp"
+#include "groundstation/client/switchable_agent_client.hpp"
+#include "groundstation/client/zmq_agent_client.hpp"
+#include "groundstation/main_window.hpp"
+#include "groundstation/recording/recording_controls.hpp"
+#include "groundstation/snapshot/ssp_screenshot.hpp"
+#include "groundstation/status/connection_bar.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
+
+namespace {
+
+constexpr double kDefaultFontPt = 11.5;  // [pt] readable at arm's length on a laptop
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("kapfix"));
+  QApplication::setApplicationName(QStringLiteral("kapfix-station"));
+  QApplication::setApplicationVersion(QStringLiteral(KAPFIX_VERSION));
+  QApplication::setStyle(QStringLiteral("Fusion"));
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(QStringLiteral("kapfix ground station"));
+  parser.addHelpOption();
+  parser.addVersionOption();
+  const QCommandLineOption agent({QStringLiteral("a"), QStringLiteral("agent")},
+                                 QStringLiteral("Agent host (default: the last one used)."),
+                                 QStringLiteral("host"));
+  const QCommandLineOption command_port(QStringLiteral("command-port"),
+                                        QStringLiteral("Agent command port (default 5555)."),
+                                        QStringLiteral("port"));
+  const QCommandLineOption stream_port(QStringLiteral("stream-port"),
+                                       QStringLiteral("Agent stream port (default 5556)."),
+                                       QStringLiteral("port"));
+  const QCommandLineOption replay(QStringLiteral("replay"),
+                                  QStringLiteral("Replay a recorded session instead of the agent."),
+                                  QStringLiteral("file"));
+  const QCommandLineOption screenshot(
+      QStringLiteral("screenshot"),
+      QStringLiteral("Save the window as PNG once SSP results are shown, then quit."),
+      QStringLiteral("file"));
+  const QCommandLineOption run_ssp(
+      QStringLiteral("run-ssp"),
+      QStringLiteral("With --screenshot: start SSP when the link is up."));
+  const QCommandLineOption font_size(QStringLiteral("font-size"),
+                                     QStringLiteral("Text size [pt] (default 11.5)."),
+                                     QStringLiteral("pt"));
+  parser.addOptions({agent, command_port, stream_port, replay, screenshot, run_ssp, font_size});
+  parser.process(app);
+
+  QFont font = QApplication::font();
+  font.setPointSizeF(parser.isSet(font_size) ? parser.value(font_size).toDouble() : kDefaultFontPt);
+  QApplication::setFont(font);
+
+  using namespace kapfix::station;
+  ZmqAgentClient live;
+  SwitchableAgentClient views(live);
+  const LinkResync resync(live, kapfix::v1::NowMicros());
+  // The window's toolbar takes ownership of these two.
+  auto* connection = new ConnectionBar(live);
+  auto* recording = new RecordingControls(views, live);
+  MainWindow window({&views, connection, recording});
+
+  AgentAddress address = connection->address();
+  if (parser.isSet(agent)) address.host = parser.value(agent);
+  if (parser.isSet(command_port)) address.command_port = parser.value(command_port).toInt();
+  if (parser.isSet(stream_port)) address.stream_port = parser.value(stream_port).toInt();
+  connection->setAddress(address);
+  connection->connectToAgent();
+
+  if (parser.isSet(replay)) {
+    QString error;
+    if (!recording->startReplay(parser.value(replay), &error)) {
+      std::fprintf(stderr, "kapfix-station: %s\n", error.toLocal8Bit().constData());
+      return 2;
+    }
+  }
+  std::optional<SspScreenshot> snapshot;
+  if (parser.isSet(screenshot)) {
+    SspScreenshotOptions options;
+    options.path = parser.value(screenshot);
+    options.run_ssp = parser.isSet(run_ssp);
+    snapshot.emplace(window, views, window.ssp(), options);
+  }
+  window.show();
+  return QApplication::exec();
+}

@@ -1,0 +1,43 @@
+#include "groundstation/photos/photo_store.hpp"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <QDir>
+#include <QSaveFile>
+#include <stdexcept>
+#include <string>
+
+namespace kapfix::station {
+
+QString PhotoStore::sidecarPathFor(const QString& image_path) {
+  return image_path + QStringLiteral(".json");
+}
+
+std::optional<SavedPhoto> PhotoStore::add(const kapfix::v1::Photo& chunk) {
+  auto photo = assembler_.Add(chunk);
+  if (!photo) return std::nullopt;
+  if (!QDir().mkpath(folder_)) {
+    throw std::runtime_error("cannot create the photo folder " + folder_.toStdString());
+  }
+  SavedPhoto saved;
+  saved.metadata = photo->metadata;
+  saved.image_path = QString::fromStdString(
+      kapfix::link::PhotoAssembler::Save(*photo, folder_.toStdString()).string());
+
+  std::string json;
+  google::protobuf::util::JsonPrintOptions options;
+  options.add_whitespace = true;
+  options.preserve_proto_field_names = true;
+  (void)google::protobuf::util::MessageToJsonString(photo->metadata, &json, options);
+  saved.sidecar_path = sidecarPathFor(saved.image_path);
+  QSaveFile sidecar(saved.sidecar_path);
+  if (!sidecar.open(QIODevice::WriteOnly) ||
+      sidecar.write(json.data(), static_cast<qint64>(json.size())) !=
+          static_cast<qint64>(json.size()) ||
+      !sidecar.commit()) {
+    throw std::runtime_error("cannot write " + saved.sidecar_path.toStdString());
+  }
+  return saved;
+}
+
+}  // namespace kapfix::station

@@ -1,0 +1,39 @@
+#pragma once
+
+// The always-visible line at the bottom of the window (issue 4): link state, latency, agent
+// fps, mode, slice in use, and which agent or recording the views show. Large type: it is
+// read at arm's length in daylight.
+
+#include <QLabel>
+#include <QWidget>
+
+#include "groundstation/client/agent_client.hpp"
+
+namespace kapfix::station {
+
+class LinkStatusBar final : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit LinkStatusBar(AgentClient& client, QWidget* parent = nullptr);
+
+  // What the labels say, for tests and screen readers.
+  QString linkText() const { return link_->text(); }
+  QString latencyText() const { return latency_->text(); }
+  QString fpsText() const { return fps_->text(); }
+  QString modeText() const { return mode_->text(); }
+
+ private:
+  void showLink(const LinkState& state);
+  void showTelemetry(const kapfix::v1::Telemetry& telemetry);
+  void showMode(kapfix::v1::Mode mode);
+
+  QLabel* link_;
+  QLabel* latency_;
+  QLabel* fps_;
+  QLabel* mode_;
+  QLabel* slice_;
+  QLabel* source_;
+};
+
+}  // namespace kapfix::station

@@ -1,0 +1,87 @@
+#include "groundstation/video/video_panel.hpp"
+
+#include <QHBoxLayout>
+#include <QPointer>
+#include <QSettings>
+#include <QVBoxLayout>
+#include <array>
+
+namespace kapfix::station {
+namespace {
+
+struct Switch {
+  const char* name;   // object name and settings key
+  const char* label;  // what the operator reads
+  bool OverlayOptions::*field;
+};
+
+const std::array<Switch, 5> kSwitches = {{
+    {"overlay_slice_grid", QT_TRANSLATE_NOOP("VideoPanel", "Slice grid"),
+     &OverlayOptions::slice_grid},
+    {"overlay_chosen_slice", QT_TRANSLATE_NOOP("VideoPanel", "Chosen slice"),
+     &OverlayOptions::chosen_slice},
+    {"overlay_reference_patch", QT_TRANSLATE_NOOP("VideoPanel", "Reference patch"),
+     &OverlayOptions::reference_patch},
+    {"overlay_current_match", QT_TRANSLATE_NOOP("VideoPanel", "Current match"),
+     &OverlayOptions::current_match},
+    {"overlay_crosshair", QT_TRANSLATE_NOOP("VideoPanel", "Crosshair"), &OverlayOptions::crosshair},
+}};
+
+QString SettingsKey(const char* name) { return QStringLiteral("video/") + QLatin1String(name); }
+
+}  // namespace
+
+VideoPanel::VideoPanel(AgentClient& client, QWidget* parent)
+    : QWidget(parent), client_(client), view_(new VideoView(this)), message_(new QLabel(this)) {
+  auto* switches = new QHBoxLayout;
+  const QSettings settings;
+  for (const Switch& entry : kSwitches) {
+    auto* box = new QCheckBox(tr(entry.label), this);
+    box->setObjectName(QLatin1String(entry.name));
+    box->setChecked(settings.value(SettingsKey(entry.name), true).toBool());
+    connect(box, &QCheckBox::toggled, this, &VideoPanel::applySwitches);
+    switches->addWidget(box);
+  }
+  switches->addStretch(1);
+  message_->setObjectName(QStringLiteral("videoMessage"));
+  switches->addWidget(message_);
+
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 4, 4, 4);
+  layout->addLayout(switches);
+  layout->addWidget(view_, 1);
+  applySwitches();
+
+  connect(&client_, &AgentClient::videoFrameReceived, view_, &VideoView::showFrame);
+  connect(view_, &VideoView::sliceClicked, this, &VideoPanel::pickSlice);
+}
+
+QCheckBox* VideoPanel::overlaySwitch(const QString& name) const {
+  return findChild<QCheckBox*>(name);
+}
+
+void VideoPanel::applySwitches() {
+  OverlayOptions options;
+  QSettings settings;
+  for (const Switch& entry : kSwitches) {
+    const bool on = overlaySwitch(QLatin1String(entry.name))->isChecked();
+    options.*entry.field = on;
+    settings.setValue(SettingsKey(entry.name), on);
+  }
+  view_->setOverlayOptions(options);
+}
+
+void VideoPanel::pickSlice(unsigned index) {
+  kapfix::v1::Command command;
+  command.set_select_slice(index);
+  message_->setText(tr("Slice %1 …").arg(index));
+  // The panel may be gone when the reply comes.
+  client_.sendCommand(std::move(command), [self = QPointer(this),
+                                           index](const CommandOutcome& outcome) {
+    if (self.isNull()) return;
+    self->message_->setText(outcome.ok ? tr("Slice %1 selected").arg(index)
+                                       : tr("Slice %1 refused: %2").arg(index).arg(outcome.reason));
+  });
+}
+
+}  // namespace kapfix::station

@@ -1,0 +1,144 @@
+#include <gtest/gtest.h>
+#include <qcustomplot.h>
+
+#include <QTemporaryDir>
+
+#include "groundstation/client/fake_agent_client.hpp"
+#include "groundstation/client/switchable_agent_client.hpp"
+#include "groundstation/plots/telemetry_plots.hpp"
+#include "groundstation/recording/recording_controls.hpp"
+#include "groundstation/recording/replay_agent_client.hpp"
+#include "groundstation/recording/session_recording.hpp"
+#include "groundstation/slices/ssp_panel.hpp"
+#include "tests/groundstation/station_test_support.hpp"
+
+namespace kapfix::station {
+namespace {
+
+using testing::MakeSliceReport;
+using testing::MakeTelemetry;
+using testing::ProcessEvents;
+using Curve = TelemetryPlots::Curve;
+
+std::vector<double> Values(const TelemetryPlots& plots, Curve curve) {
+  std::vector<double> values;
+  const QCPGraph* graph = plots.graph(curve);
+  for (int i = 0; i < graph->dataCount(); ++i) values.push_back(graph->data()->at(i)->value);
+  return values;
+}
+
+TEST(Recording, RecordThenReplayShowsTheSameTelemetryInThePlots) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
+  FakeAgentClient live;
+  SwitchableAgentClient views(live);
+  RecordingControls controls(views, live);
+  TelemetryPlots plots(views);
+
+  ASSERT_TRUE(controls.startRecording(path));
+  for (int i = 0; i < 20; ++i)
+    live.publish(MakeTelemetry(i, i * 3 - 10, 2 - i, 1'000'000 + i * 40'000));
+  controls.stopRecording();
+  plots.redraw();
+  const std::vector<double> live_x = Values(plots, Curve::kDisplacementX);
+  const std::vector<double> live_y = Values(plots, Curve::kDisplacementY);
+  ASSERT_EQ(live_x.size(), 20U);
+
+  plots.clear();
+  ASSERT_TRUE(controls.startReplay(path));
+  controls.replay().playToEnd();
+  plots.redraw();
+  EXPECT_EQ(Values(plots, Curve::kDisplacementX), live_x);
+  EXPECT_EQ(Values(plots, Curve::kDisplacementY), live_y);
+  EXPECT_TRUE(views.linkState().replay);
+}
+
+TEST(Recording, ReplayShowsTheRecordedSspResultsInTheSspPanel) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
+  FakeAgentClient live;
+  SwitchableAgentClient views(live);
+  SessionRecording recording(views);
+  ASSERT_TRUE(recording.start(path));
+  live.publish(MakeSliceReport(9, 6));
+  recording.stop();
+
+  ReplayAgentClient replay;
+  ASSERT_TRUE(replay.open(path));
+  views.setSource(replay);
+  SspPanel panel(views);
+  replay.playToEnd();
+  EXPECT_EQ(panel.recommended(), 6U);
+  EXPECT_EQ(panel.table().rowCount(), 9);
+}
+
+TEST(Recording, CommandsAndRepliesAreRecordedAsEvents) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
+  FakeAgentClient live;
+  SessionRecording recording(live);
+  ASSERT_TRUE(recording.start(path));
+  kapfix::v1::Command command;
+  command.set_select_slice(4);
+  live.sendCommand(command);
+  ProcessEvents();
+  recording.stop();
+
+  ReplayAgentClient replay;
+  std::vector<std::uint32_t> slices;
+  int replies = 0;
+  QObject::connect(&replay, &AgentClient::commandSent,
+                   [&slices](const kapfix::v1::Command& c) { slices.push_back(c.select_slice()); });
+  QObject::connect(&replay, &AgentClient::replyReceived,
+                   [&replies](const kapfix::v1::Reply& /*reply*/) { ++replies; });
+  ASSERT_TRUE(replay.open(path));
+  replay.playToEnd();
+  EXPECT_EQ(slices, std::vector<std::uint32_t>{4});
+  EXPECT_EQ(replies, 1);
+}
+
+TEST(Recording, ReplayPlaysAtTheRecordedPace) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
+  {
+    FakeAgentClient live;
+    SessionRecording recording(live);
+    ASSERT_TRUE(recording.start(path));
+    live.publish(MakeTelemetry(1, 0, 0, 1));
+    QTest::qWait(300);
+    live.publish(MakeTelemetry(2, 0, 0, 2));
+  }
+  ReplayAgentClient replay;
+  ASSERT_TRUE(replay.open(path));
+  replay.play();
+  QTest::qWait(100);
+  EXPECT_EQ(replay.delivered(), 1U) << "the second message is 300 ms later";
+  EXPECT_TRUE(testing::WaitUntil([&] { return replay.atEnd(); }));
+  EXPECT_EQ(replay.delivered(), 2U);
+}
+
+TEST(Recording, ReplayRefusesCommandsWithItsReason) {
+  ReplayAgentClient replay;
+  std::optional<CommandOutcome> seen;
+  replay.sendCommand(kapfix::v1::Command{}, [&seen](const CommandOutcome& o) { seen = o; });
+  ProcessEvents();
+  ASSERT_TRUE(seen.has_value());
+  EXPECT_FALSE(seen->ok);
+  EXPECT_TRUE(seen->reason.contains(QStringLiteral("no agent")));
+}
+
+TEST(Recording, NotARecordingIsRefusedWhenOpened) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("junk"));
+  QFile junk(path);
+  ASSERT_TRUE(junk.open(QIODevice::WriteOnly));
+  junk.write("hello");
+  junk.close();
+  ReplayAgentClient replay;
+  QString error;
+  EXPECT_FALSE(replay.open(path, &error));
+  EXPECT_FALSE(error.isEmpty());
+}
+
+}  // namespace
+}  // namespace kapfix::station
