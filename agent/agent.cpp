@@ -68,6 +68,7 @@ AgentConfig BuiltInConfig(MotionKind motion) {
   config.controller.kp = 1.0;
   // A simulated flight from a user's shell: photos next to it, not in the service's folder.
   config.photos.dir = "kapfix-photos";
+  config.state_dir = "kapfix-state";
   return config;
 }
 
@@ -173,9 +174,24 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
   telemetry_publisher_ = std::make_unique<TelemetryPublisher>(
       *publisher_, [video = video_.get()] { return video->dropped(); });
+  // Stored calibrations replace the profiles' nominal deg/px (after the simulation took its
+  // truth from the nominal one: the simulated lens does not change).
+  calibrations_ = std::make_unique<CalibrationStore>(
+      std::filesystem::path(config_.state_dir) / "calibration");
+  for (LensProfile& lens : config_.lenses) {
+    std::string why;
+    if (const auto stored = calibrations_->Load(lens.name, &why)) {
+      lens.deg_per_px_pan = stored->pan_deg_per_px;
+      lens.deg_per_px_tilt = stored->tilt_deg_per_px;
+      spdlog::info("lens {}: stored calibration {:.5f} / {:.5f} deg/px", lens.name,
+                   stored->pan_deg_per_px, stored->tilt_deg_per_px);
+    } else if (!why.empty()) {
+      spdlog::warn("lens {}: stored calibration ignored: {}", lens.name, why);
+    }
+  }
   PhotoStore* store = photo_store_.get();
   state_ = std::make_unique<StateKeeper>(config_, *publisher_, simulated_,
-                                         [store] { return store->count(); });
+                                         [store] { return store->count(); }, calibrations_.get());
 
   ModeRunnerOptions modes;
   modes.start_mode = options_.start_mode;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "agent/capture/frame_source.hpp"
+#include "agent/commands/calibration_store.hpp"
 #include "agent/commands/command_executor.hpp"
 #include "agent/commands/state_keeper.hpp"
 #include "agent/config/agent_config.hpp"
@@ -106,6 +107,7 @@ class Agent {
   std::unique_ptr<VideoDownlink> video_;
   std::unique_ptr<TelemetryPublisher> telemetry_publisher_;
   TelemetryRecorder telemetry_;
+  std::unique_ptr<CalibrationStore> calibrations_;
   std::unique_ptr<StateKeeper> state_;
   std::unique_ptr<ModeRunner> modes_;
   std::unique_ptr<Pipeline> pipeline_;

@@ -50,6 +50,7 @@ int Main(int argc, char** argv) {
   std::string command_address;
   std::string stream_address;
   std::string photos_dir;
+  std::string state_dir;
   std::string start_mode = "fixate";
   bool insecure = false;
   bool max_speed = false;
@@ -77,6 +78,8 @@ int Main(int argc, char** argv) {
   app.add_option("--stream-address", stream_address,
                  "ZeroMQ address for the streams (overrides link.stream)");
   app.add_option("--photos", photos_dir, "folder for photos and recordings (overrides photos.dir)");
+  app.add_option("--state-dir", state_dir,
+                 "folder for the agent's calibrations per lens (overrides state_dir)");
   app.add_option("--mode", start_mode, "mode on the first frame")
       ->check(CLI::IsMember({"idle", "fixate", "follow", "ssp", "pss", "calibrate"}));
   app.add_flag("--insecure", insecure,
@@ -100,6 +103,7 @@ int Main(int argc, char** argv) {
   if (!command_address.empty()) config.link.command_address = command_address;
   if (!stream_address.empty()) config.link.stream_address = stream_address;
   if (!photos_dir.empty()) config.photos.dir = photos_dir;
+  if (!state_dir.empty()) config.state_dir = state_dir;
 
   AgentOptions options;
   options.simulate = force_sim;

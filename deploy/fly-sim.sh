@@ -28,8 +28,7 @@ echo "== slice selection over a free swing =="
 "$ctl" --timeout 10000 ssp --wait --frames 150 | tee "$out/ssp.txt"
 best=$(sed -n 's/^recommended_slice: //p' "$out/ssp.txt")
 echo "== confirming slice $best and fixating for $duration s =="
-"$ctl" slice "$best"
-"$ctl" fixate
+"$ctl" slice "$best"   # confirms the slice: the agent fixates on it
 "$ctl" watch --count 5
 sleep "$duration"
 echo "== stabilised photo =="

@@ -8,11 +8,13 @@
 namespace kapfix::agent {
 
 StateKeeper::StateKeeper(AgentConfig settings, StreamSink& sink, bool simulated,
-                         std::function<std::uint64_t()> photos_stored)
+                         std::function<std::uint64_t()> photos_stored,
+                         const CalibrationStore* calibrations)
     : settings_(std::move(settings)),
       sink_(sink),
       simulated_(simulated),
-      photos_stored_(std::move(photos_stored)) {}
+      photos_stored_(std::move(photos_stored)),
+      calibrations_(calibrations) {}
 
 AgentConfig StateKeeper::settings() const {
   std::lock_guard lock(mutex_);
@@ -101,6 +103,14 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
         profile.deg_per_px_pan = applied->pan_deg_per_px;
         profile.deg_per_px_tilt = applied->tilt_deg_per_px;
       }
+    }
+  }
+  if (report.finished() && applied && calibrations_) {
+    try {
+      calibrations_->Save(report.lens_profile(), *applied, report);
+      spdlog::info("calibration of lens {} stored", report.lens_profile());
+    } catch (const std::exception& e) {
+      spdlog::error("calibration of lens {} not stored: {}", report.lens_profile(), e.what());
     }
   }
   sink_.Publish(report);

@@ -4,6 +4,7 @@
 #include <mutex>
 #include <optional>
 
+#include "agent/commands/calibration_store.hpp"
 #include "agent/config/agent_config.hpp"
 #include "agent/modes/mode_events.hpp"
 #include "agent/server/stream_sink.hpp"
@@ -18,8 +19,10 @@ namespace kapfix::agent {
 class StateKeeper : public ModeEvents {
  public:
   // `photos_stored` counts the photos on the agent's disk when a state is made.
+  // `calibrations`: where finished calibrations are kept per lens profile; may be null.
   StateKeeper(AgentConfig settings, StreamSink& sink, bool simulated,
-              std::function<std::uint64_t()> photos_stored);
+              std::function<std::uint64_t()> photos_stored,
+              const CalibrationStore* calibrations = nullptr);
 
   AgentConfig settings() const;
   void SetSettings(AgentConfig settings);  // must be IsValid; publishes the new state
@@ -44,6 +47,7 @@ class StateKeeper : public ModeEvents {
   StreamSink& sink_;
   bool simulated_;
   std::function<std::uint64_t()> photos_stored_;
+  const CalibrationStore* calibrations_;
   AgentMode mode_ = AgentMode::kIdle;
   int slice_ = 0;
   std::optional<kapfix::v1::SliceReport> last_slice_report_;

@@ -169,6 +169,7 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
     return s.ok();
   });
   r.Read("watchdog_ms", &c->watchdog_ms);
+  r.Read("state_dir", &c->state_dir);
   r.Finish();
 }
 
@@ -211,6 +212,7 @@ bool AgentConfig::IsValid(std::string* error) const {
                 " px does not fit in the camera's " + std::to_string(camera.width) + "x" +
                 std::to_string(camera.height) + " frame");
   }
+  if (state_dir.empty()) return fail("state_dir: must name a folder");
   if (watchdog_ms < 20 || watchdog_ms > 60000) {
     return fail("watchdog_ms: must be 20…60000 ms, got " + std::to_string(watchdog_ms));
   }

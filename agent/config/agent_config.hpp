@@ -32,6 +32,8 @@ struct AgentConfig {
   LinkConfig link;
   PhotoConfig photos;
   VideoConfig video;
+  // The agent's own files besides photos: calibrations per lens profile (calibration/).
+  std::string state_dir = "/var/lib/kapfix";
   // [ms] the servos are parked when the control loop has not run for this long.
   int watchdog_ms = 500;
 

@@ -122,9 +122,17 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     rebuild = true;
   }
   if (pending.slice) {
+    // Picking a slice means fixating on it (the operator confirms SSP's choice or overrides
+    // it): a fixation in progress keeps its reference frame and moves to the new patch; any
+    // other mode hands over to fixate.
     slice_ = std::clamp(*pending.slice, 1, settings_.search.slices);
     rebuild = true;
-    events_.OnModeChanged(mode_, slice_);
+    const AgentMode now = mode_;
+    if (!pending.mode && now != AgentMode::kFixate && now != AgentMode::kFollow) {
+      pending.mode = std::make_pair(AgentMode::kFixate, options_.default_deadline);
+    } else {
+      events_.OnModeChanged(now, slice_);
+    }
   }
   try {
     if (rebuild) Rebuild();

@@ -46,7 +46,9 @@ class ModeRunner : public FrameProcessor {
   // earlier one not yet applied.
   void RequestMode(AgentMode mode, std::optional<SwingDeadline> deadline = std::nullopt);
   void RequestSettings(const AgentConfig& settings);  // must be IsValid
-  void RequestSlice(int slice);                       // [1..slice_count]
+  // [1..slice_count] fixate on this slice: the current fixation moves to it, any other mode
+  // (SSP finished, idle) switches to fixate.
+  void RequestSlice(int slice);
 
   AgentMode mode() const { return mode_.load(); }
   int slice() const { return slice_.load(); }

@@ -53,7 +53,9 @@ AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
       "--stream-address",
       "tcp://127.0.0.1:" + std::to_string(stream_port_),
       "--photos",
-      photos().string()};
+      photos().string(),
+      "--state-dir",
+      (folder_ / "state").string()};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());

@@ -27,6 +27,10 @@ class AgentProcess {
   int stream_port() const { return stream_port_; }
   const std::filesystem::path& folder() const { return folder_; }
   std::filesystem::path photos() const { return folder_ / "photos"; }
+  std::string command_endpoint() const {
+    return "tcp://127.0.0.1:" + std::to_string(command_port_);
+  }
+  std::string stream_endpoint() const { return "tcp://127.0.0.1:" + std::to_string(stream_port_); }
   std::string log() const;  // what it wrote on stderr so far
 
   // kapfix-ctl pointed at this agent: exit code and stdout; stderr goes to ctl_err.

@@ -1,0 +1,147 @@
+// The whole station against the real kapfix-agent in simulation on loopback (issue 4's list):
+// connect, run SSP, pick a slice, change a gain, capture a photo, replay a recording. The agent
+// runs as a child process (tests/integration/agent_process.hpp) flying the kite over aero1.jpg
+// in real time, with a free swing of 45 frames for SSP so that a test takes seconds.
+#include <gtest/gtest.h>
+
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QTemporaryDir>
+#include <fstream>
+#include <memory>
+
+#include "groundstation/client/link_resync.hpp"
+#include "groundstation/client/switchable_agent_client.hpp"
+#include "groundstation/client/zmq_agent_client.hpp"
+#include "groundstation/main_window.hpp"
+#include "groundstation/photos/photos_panel.hpp"
+#include "groundstation/recording/recording_controls.hpp"
+#include "groundstation/settings/setting_row.hpp"
+#include "groundstation/settings/settings_panel.hpp"
+#include "groundstation/slices/ssp_panel.hpp"
+#include "groundstation/status/link_status_bar.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
+#include "tests/groundstation/station_test_support.hpp"
+#include "tests/integration/agent_process.hpp"
+
+namespace kapfix::station {
+namespace {
+
+using testing::WaitUntil;
+
+constexpr auto kLongWait = std::chrono::milliseconds(20000);
+
+// The built-in simulation's choices (BuiltInConfig) with a short SSP swing.
+std::string WriteConfig() {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("kapfix_station_agent_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(path) << R"({"search": {"axis": "both", "swing_frames": 45},
+                             "controller": {"kp": 1.0}})";
+  return path.string();
+}
+
+class StationWithAgent : public ::testing::Test {
+ protected:
+  StationWithAgent()
+      : agent_({"--config", WriteConfig(), "--mode", "idle"}), live_(Options()), views_(live_) {
+    recording_ = new RecordingControls(views_, live_);
+    window_ = std::make_unique<MainWindow>(MainWindowParts{&views_, nullptr, recording_});
+    window_->photos().setFolder(photos_.path());
+    QObject::connect(&live_, &AgentClient::stateReceived,
+                     [this](const kapfix::v1::AgentState& state) { state_ = state; });
+    live_.connectToEndpoints(QString::fromStdString(agent_.command_endpoint()),
+                             QString::fromStdString(agent_.stream_endpoint()));
+  }
+
+  static ZmqAgentClientOptions Options() {
+    ZmqAgentClientOptions options;
+    options.heartbeat_interval = std::chrono::milliseconds(100);
+    options.status_poll = std::chrono::milliseconds(50);
+    return options;
+  }
+
+  kapfix::testing::AgentProcess agent_;
+  const QTemporaryDir photos_;
+  ZmqAgentClient live_;
+  SwitchableAgentClient views_;
+  const LinkResync resync_{live_, kapfix::v1::NowMicros()};
+  RecordingControls* recording_;  // owned by the window
+  std::unique_ptr<MainWindow> window_;
+  kapfix::v1::AgentState state_;  // the latest the agent published or replied
+};
+
+TEST_F(StationWithAgent, ConnectsAndShowsTheLinkUpAndTheAgentsMode) {
+  ASSERT_TRUE(WaitUntil(
+      [&] { return window_->status().linkText() == QStringLiteral("LINK UP"); }, kLongWait))
+      << agent_.log();
+  EXPECT_TRUE(WaitUntil([&] { return state_.mode() == kapfix::v1::MODE_IDLE; }, kLongWait));
+}
+
+TEST_F(StationWithAgent, RunsSspPicksTheRecommendedSliceAndFixates) {
+  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  window_->ssp().runAction()->trigger();
+  ASSERT_TRUE(WaitUntil([&] { return window_->ssp().recommended() > 0; }, kLongWait))
+      << agent_.log();
+  EXPECT_EQ(window_->ssp().table().rowCount(), 9);
+  const int recommended = window_->ssp().recommended();
+  window_->ssp().confirmAction()->trigger();
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return state_.slice() == static_cast<unsigned>(recommended) &&
+               state_.mode() == kapfix::v1::MODE_FIXATE;
+      },
+      kLongWait))
+      << agent_.log();
+}
+
+TEST_F(StationWithAgent, ChangesAGain) {
+  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  auto* p = qobject_cast<QDoubleSpinBox*>(window_->settings().row(QStringLiteral("p"))->editor());
+  p->setValue(0.75);
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return window_->settings().row(QStringLiteral("p"))->statusLabel()->text() ==
+               QStringLiteral("✓");
+      },
+      kLongWait));
+  EXPECT_TRUE(WaitUntil([&] { return state_.gains().p() == 0.75F; }, kLongWait));
+}
+
+TEST_F(StationWithAgent, CapturesAPhotoIntoTheFolderWithItsSidecar) {
+  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  window_->photos().captureAction()->trigger();
+  const QDir folder(photos_.path());
+  ASSERT_TRUE(WaitUntil(
+      [&] { return !folder.entryList({QStringLiteral("*.jpg")}, QDir::Files).isEmpty(); },
+      kLongWait))
+      << agent_.log();
+  const QString name = folder.entryList({QStringLiteral("*.jpg")}, QDir::Files).front();
+  EXPECT_TRUE(QFile::exists(folder.filePath(name + QStringLiteral(".json"))));
+  // The same bytes as the agent's own copy.
+  const auto on_agent = agent_.photos() / name.toStdString();
+  ASSERT_TRUE(std::filesystem::exists(on_agent));
+  EXPECT_EQ(QFileInfo(folder.filePath(name)).size(),
+            static_cast<qint64>(std::filesystem::file_size(on_agent)));
+}
+
+TEST_F(StationWithAgent, ReplaysARecordingOfTheLiveSession) {
+  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("flight.kfxrec"));
+  ASSERT_TRUE(recording_->startRecording(path));
+  window_->ssp().runAction()->trigger();
+  ASSERT_TRUE(WaitUntil([&] { return window_->ssp().recommended() > 0; }, kLongWait));
+  const int recommended = window_->ssp().recommended();
+  recording_->stopRecording();
+  agent_.Stop();  // replay needs no agent
+
+  ASSERT_TRUE(recording_->startReplay(path));
+  recording_->replay().playToEnd();
+  EXPECT_EQ(window_->status().linkText(), QStringLiteral("REPLAY"));
+  EXPECT_EQ(window_->ssp().table().rowCount(), 9);
+  EXPECT_EQ(window_->ssp().recommended(), recommended);
+}
+
+}  // namespace
+}  // namespace kapfix::station
