@@ -100,10 +100,8 @@ KAPFIX_KERNEL void SsdSlide(const std::uint16_t* ref, int width, const std::uint
   }
 }
 
-namespace {
-
-std::int64_t DotRowsPlain(const std::int16_t* ref, int padded, int rows, const std::uint8_t* cur,
-                          std::size_t cur_step) {
+KAPFIX_KERNEL std::int64_t DotRowsPortable(const std::int16_t* ref, int padded, int rows,
+                                           const std::uint8_t* cur, std::size_t cur_step) {
   std::int64_t total = 0;
   for (int r = 0; r < rows; ++r) {
     std::int32_t sum = 0;
@@ -116,6 +114,25 @@ std::int64_t DotRowsPlain(const std::int16_t* ref, int padded, int rows, const s
   }
   return total;
 }
+
+KAPFIX_KERNEL std::int64_t SsdRowsMaskedPortable(const std::int16_t* ref, const std::int16_t* mask,
+                                                 int padded, int rows, const std::uint8_t* cur,
+                                                 std::size_t cur_step) {
+  std::int64_t total = 0;
+  for (int r = 0; r < rows; ++r) {
+    std::int32_t sum = 0;
+    for (int i = 0; i < padded; ++i) {
+      const std::int32_t d = ref[i] - static_cast<std::int32_t>(cur[i]);
+      sum += d * (d & mask[i]);
+    }
+    total += sum;
+    ref += padded;
+    cur += cur_step;
+  }
+  return total;
+}
+
+namespace {
 
 #if KAPFIX_HAVE_AVX2_DOT
 // Written with intrinsics: autovectorised, the reduction is closed (a horizontal add and a
@@ -181,22 +198,6 @@ __attribute__((target("avx2"))) std::int64_t SsdRowsMaskedAvx2(const std::int16_
 }
 #endif
 
-std::int64_t SsdRowsMaskedPlain(const std::int16_t* ref, const std::int16_t* mask, int padded,
-                                int rows, const std::uint8_t* cur, std::size_t cur_step) {
-  std::int64_t total = 0;
-  for (int r = 0; r < rows; ++r) {
-    std::int32_t sum = 0;
-    for (int i = 0; i < padded; ++i) {
-      const std::int32_t d = ref[i] - static_cast<std::int32_t>(cur[i]);
-      sum += d * (d & mask[i]);
-    }
-    total += sum;
-    ref += padded;
-    cur += cur_step;
-  }
-  return total;
-}
-
 }  // namespace
 
 std::int64_t SsdRowsMasked(const std::int16_t* ref, const std::int16_t* mask, int padded, int rows,
@@ -205,7 +206,7 @@ std::int64_t SsdRowsMasked(const std::int16_t* ref, const std::int16_t* mask, in
   static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
   if (avx2) return SsdRowsMaskedAvx2(ref, mask, padded, rows, cur, cur_step);
 #endif
-  return SsdRowsMaskedPlain(ref, mask, padded, rows, cur, cur_step);
+  return SsdRowsMaskedPortable(ref, mask, padded, rows, cur, cur_step);
 }
 
 std::int64_t DotRows(const std::int16_t* ref, int padded, int rows, const std::uint8_t* cur,
@@ -214,7 +215,7 @@ std::int64_t DotRows(const std::int16_t* ref, int padded, int rows, const std::u
   static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
   if (avx2) return DotRowsAvx2(ref, padded, rows, cur, cur_step);
 #endif
-  return DotRowsPlain(ref, padded, rows, cur, cur_step);
+  return DotRowsPortable(ref, padded, rows, cur, cur_step);
 }
 
 KAPFIX_KERNEL void AddSquares(const std::uint8_t* row, int n, std::int32_t* acc) {

@@ -49,6 +49,13 @@ std::int64_t DotRows(const std::int16_t* ref, int padded, int rows, const std::u
 std::int64_t SsdRowsMasked(const std::int16_t* ref, const std::int16_t* mask, int padded, int rows,
                            const std::uint8_t* cur, std::size_t cur_step);
 
+// DotRows and SsdRowsMasked without their AVX2 intrinsics: what CPUs without AVX2 (and other
+// architectures) run. Exposed so that the tests compare both paths on any machine.
+std::int64_t DotRowsPortable(const std::int16_t* ref, int padded, int rows, const std::uint8_t* cur,
+                             std::size_t cur_step);
+std::int64_t SsdRowsMaskedPortable(const std::int16_t* ref, const std::int16_t* mask, int padded,
+                                   int rows, const std::uint8_t* cur, std::size_t cur_step);
+
 // acc[i] += row[i]² for i < n (Σc² column by column, for SlidingSsd).
 void AddSquares(const std::uint8_t* row, int n, std::int32_t* acc);
 // Σ row[i]² for i < n.
