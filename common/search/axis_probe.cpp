@@ -1,7 +1,11 @@
 #include "common/search/axis_probe.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
+#include <vector>
 
+#include "common/matching/sliding_ssd.hpp"
 #include "common/search/match_confidence.hpp"
 #include "common/search/subpixel.hpp"
 
@@ -37,6 +41,27 @@ bool AxisProbe::Evaluate(int s, std::int64_t* distance) {
   *distance = reference_.Distance(current_, ShiftAt(s));
   scored_.emplace(s, *distance);
   return true;
+}
+
+void AxisProbe::EvaluateRun(int first, int last) {
+  first = std::max(first, interval_.first);
+  last = std::min(last, interval_.last);
+  if (first > last) return;
+  const SlidingSsd* sliding =
+      current_.type() == CV_8UC1 ? SlidingSsd::ForReference(reference_) : nullptr;
+  if (sliding == nullptr) {
+    std::int64_t distance = 0;
+    for (int s = first; s <= last; ++s) Evaluate(s, &distance);
+    return;
+  }
+  thread_local std::vector<std::int64_t> distances;
+  distances.resize(static_cast<std::size_t>(last) - first + 1);
+  sliding->Score(current_, reference_.samples().bounds().tl() + ShiftAt(first),
+                 static_cast<int>(distances.size()), along_x_, distances.data());
+  auto hint = scored_.lower_bound(first);
+  for (int s = first; s <= last; ++s) {
+    hint = std::next(scored_.emplace_hint(hint, s, distances[static_cast<std::size_t>(s - first)]));
+  }
 }
 
 bool AxisProbe::Best(int* s, std::int64_t* distance) const {

@@ -20,6 +20,9 @@ class AxisProbe {
   // nullopt-like: returns false if `s` cannot be scored.
   bool Evaluate(int s, std::int64_t* distance);
   bool CanEvaluate(int s) const { return interval_.contains(s); }
+  // Evaluates every position in [first, last] that can be scored, as Evaluate would one by
+  // one (the same distances), but in one sweep when the reference is a dense 8-bit block.
+  void EvaluateRun(int first, int last);
 
   // Best scored position so far (ties: the one closest to the centre, then the smaller).
   bool Best(int* s, std::int64_t* distance) const;

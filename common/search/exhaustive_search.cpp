@@ -4,8 +4,7 @@ namespace kapfix {
 
 void ExhaustiveSearch::SearchAxis(AxisProbe& probe, int range) const {
   const int c = probe.centre_position();
-  std::int64_t distance = 0;
-  for (int s = c - range; s < c + range; ++s) probe.Evaluate(s, &distance);
+  probe.EvaluateRun(c - range, c + range - 1);
 }
 
 }  // namespace kapfix

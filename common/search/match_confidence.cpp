@@ -7,7 +7,10 @@
 
 namespace kapfix {
 
-double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) {
+namespace {
+
+template <typename Curve>
+double Confidence(const Curve& curve, int exclusion) {
   if (curve.size() < 2) return 0.0;
   const auto best = std::min_element(
       curve.begin(), curve.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
@@ -23,6 +26,16 @@ double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) 
   if (rival == std::numeric_limits<std::int64_t>::max()) rival = highest;
   if (rival <= 0) return 0.0;
   return std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0, 1.0);
+}
+
+}  // namespace
+
+double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion) {
+  return Confidence(curve, exclusion);
+}
+
+double MatchConfidence(const std::vector<std::pair<int, std::int64_t>>& curve, int exclusion) {
+  return Confidence(curve, exclusion);
 }
 
 }  // namespace kapfix

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <map>
+#include <utility>
+#include <vector>
 
 namespace kapfix {
 
@@ -11,5 +13,8 @@ namespace kapfix {
 // highest sampled distance when there is no such minimum (a single clean basin). 0 means the
 // rival is as good as the best: the lock is ambiguous.
 double MatchConfidence(const std::map<int, std::int64_t>& curve, int exclusion = 2);
+// The same over (position, distance) pairs in increasing position: no tree to build for a
+// curve computed in order.
+double MatchConfidence(const std::vector<std::pair<int, std::int64_t>>& curve, int exclusion = 2);
 
 }  // namespace kapfix

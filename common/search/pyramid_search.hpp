@@ -7,10 +7,10 @@ namespace kapfix {
 // Strategy "pyr" (SPEC §2.3, beyond the thesis): coarse-to-fine over a low-passed pyramid.
 //
 // The reference patch's neighbourhood and the current frame's search region are cropped on a
-// grid aligned to 2^levels pixels and reduced with cv::pyrDown (Gaussian 5×5, decimation by 2)
-// `levels` times. At the coarsest level every shift of the search window is scored over all
-// of the patch's pixels: ±R / 2^levels along the searched axes and ±cross_range / 2^levels
-// across a single axis (SearchOptions::cross_range), jointly. Each finer level starts from
+// grid aligned to 2^levels pixels and reduced with PyrDown (bit for bit cv::pyrDown: Gaussian
+// 5×5, decimation by 2) `levels` times. At the coarsest level every shift of the search window is
+// scored over all of the patch's pixels: ±R / 2^levels along the searched axes and ±cross_range /
+// 2^levels across a single axis (SearchOptions::cross_range), jointly. Each finer level starts from
 // twice the coarser best and descends over 3×3 neighbourhoods (all pixels); full resolution
 // does the same with the sampled pixels only, then fits the sub-pixel parabola per searched
 // axis. Blur widens the error curve's basin (thesis §3.2.1.3): the coarse level does not lock

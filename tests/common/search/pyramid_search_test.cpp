@@ -58,9 +58,31 @@ TEST(PyramidSearchTest, BuildsTheReducedReferenceOncePerStoredReference) {
   };
   reference.Derived("probe", make);
   reference.Derived("probe", make);
-  const ReferencePatch copy = reference;  // copies share what was derived
+  // Copies share what was derived: the copy is what is tested.
+  const ReferencePatch copy = reference;  // NOLINT(performance-unnecessary-copy-initialization)
   copy.Derived("probe", make);
   EXPECT_EQ(built, 1);
+}
+
+TEST(PyramidSearchTest, SixteenBitPlanesGiveTheSameAnswerAsEightBitOnes) {
+  // The sum of three channels is a 16-bit plane, scored without the 8-bit kernels (SsdSlide,
+  // SsdBlock): three equal channels make it 3 × the green plane, the same minimum.
+  const auto sum_plane = [](const cv::Mat& green) {
+    cv::Mat bgr;
+    cv::merge(std::vector<cv::Mat>{green, green, green}, bgr);
+    return ExtractChannel(bgr, ColorChannel::kRgbSum);
+  };
+  const cv::Mat ref8 = AeroWindow(0, 0);
+  const cv::Mat cur8 = AeroWindow(-37, 2);
+  const cv::Mat ref16 = sum_plane(ref8);
+  ASSERT_EQ(ref16.type(), CV_16UC1);
+  const SearchResult r8 =
+      PyramidSearch().Search(ReferencePatch(ref8, CentralRandomTenth()), cur8, {});
+  const SearchResult r16 =
+      PyramidSearch().Search(ReferencePatch(ref16, CentralRandomTenth()), sum_plane(cur8), {});
+  ASSERT_TRUE(r16.found);
+  EXPECT_EQ(r16.shift, r8.shift);
+  EXPECT_EQ(r16.shift, cv::Point(-37, 2));
 }
 
 TEST(PyramidSearchTest, ReportsLowConfidenceOnAFlatScene) {

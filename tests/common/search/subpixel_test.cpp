@@ -38,5 +38,13 @@ TEST(MatchConfidenceTest, AShallowerRivalGivesPartialConfidence) {
   EXPECT_DOUBLE_EQ(MatchConfidence(curve), 0.5);
 }
 
+TEST(MatchConfidenceTest, APairListInPositionOrderReadsLikeTheMap) {
+  const std::vector<std::pair<int, std::int64_t>> curve{{-6, 90}, {-5, 40}, {-4, 90},
+                                                        {0, 90},  {1, 20},  {2, 90}};
+  EXPECT_DOUBLE_EQ(MatchConfidence(curve), 0.5);
+  EXPECT_DOUBLE_EQ(MatchConfidence(curve, 6), 1.0 - 20.0 / 90.0);  // rival excluded: highest
+  EXPECT_DOUBLE_EQ(MatchConfidence(std::vector<std::pair<int, std::int64_t>>{{0, 5}}), 0.0);
+}
+
 }  // namespace
 }  // namespace kapfix
