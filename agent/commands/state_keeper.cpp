@@ -102,6 +102,10 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
         if (profile.name != report.lens_profile()) continue;
         profile.deg_per_px_pan = applied->pan_deg_per_px;
         profile.deg_per_px_tilt = applied->tilt_deg_per_px;
+        // The calibration replaces what the optics said: a profile holds one form or the other
+        // (LensProfile::IsValid), or every later settings command would be refused.
+        profile.focal_mm = 0;
+        profile.pixel_pitch_um = 0;
       }
     }
   }

@@ -45,7 +45,14 @@ void VideoDownlink::OnStep(const CapturedFrame& frame, const FrameOutcome& outco
   }
   if (fps <= 0) return;
   const auto period_us = static_cast<std::int64_t>(std::llround(1e6 / fps));
-  if (last_taken_us_ && frame.capture_time_us - *last_taken_us_ < period_us &&
+  // A frame is due when the period has passed, give or take half a camera frame: at 30 fps on
+  // a microsecond clock three frames are 99 999 µs, and waiting for a fourth would send 7.5
+  // instead of 10 frames per second.
+  const std::int64_t slack_us = previous_us_ && frame.capture_time_us > *previous_us_
+                                    ? (frame.capture_time_us - *previous_us_) / 2
+                                    : 0;
+  previous_us_ = frame.capture_time_us;
+  if (last_taken_us_ && frame.capture_time_us - *last_taken_us_ < period_us - slack_us &&
       frame.capture_time_us >= *last_taken_us_) {
     return;
   }

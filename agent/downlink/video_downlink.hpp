@@ -52,6 +52,7 @@ class VideoDownlink : public StepObserver {
   std::optional<Pending> pending_;
   bool stop_ = false;
   std::optional<std::int64_t> last_taken_us_;  // control thread only
+  std::optional<std::int64_t> previous_us_;    // control thread only: the last frame seen
   std::atomic<std::uint64_t> dropped_{0};
   std::atomic<std::uint64_t> sent_{0};
   std::thread thread_;

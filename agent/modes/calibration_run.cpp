@@ -3,12 +3,10 @@
 namespace kapfix::agent {
 
 CalibrationRun::CalibrationRun(CalibrationRunOptions options, const SearchStrategy& strategy)
-    : options_(std::move(options)),
+    : options_(options),
       strategy_(strategy),
       moves_(CalibrationMoves(options_.span_deg, options_.step_deg)),
-      samples_({options_.patch}, options_.sampling) {
-  options_.search.axis = SearchAxis::kBoth;
-}
+      samples_({options_.patch}, options_.sampling) {}
 
 ServoTargets CalibrationRun::Command() const {
   ServoTargets target = options_.park;
@@ -26,8 +24,12 @@ ServoTargets CalibrationRun::Step(const cv::Mat& plane) {
     phase_ = Phase::kToMove;
     return Command();
   }
-  // Settled at park + move: read how far the view went.
-  const SearchResult found = strategy_.Search(*reference_, plane, options_.search);
+  // Settled at park + move: read how far the view went, along the moved axis only. A
+  // separable search over both axes looks along x first, at the unmoved y: after a tilt move
+  // of tens of pixels that x search lands anywhere on fine texture, and the y search with it.
+  SearchOptions search = options_.search;
+  search.axis = axis_ == 0 ? SearchAxis::kX : SearchAxis::kY;
+  const SearchResult found = strategy_.Search(*reference_, plane, search);
   if (found.found) {
     const double moved_px = axis_ == 0 ? found.displacement.x : found.displacement.y;
     (axis_ == 0 ? pan_samples_ : tilt_samples_).push_back({moves_[move_], moved_px});

@@ -21,7 +21,7 @@ struct CalibrationRunOptions {
   int settle_frames = 3;
   cv::Rect patch;        // [px] where the view is read (the slice's patch)
   SamplingOptions sampling;
-  SearchOptions search;  // axis is forced to both: each move is read on its own axis
+  SearchOptions search;  // axis is ignored: each move is read along its own axis
   ServoTargets park;     // [deg] position each move starts from
 };
 

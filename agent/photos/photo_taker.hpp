@@ -24,7 +24,7 @@ class PhotoTaker : public StepObserver {
  public:
   // [bytes] each Photo message carries at most this much of the file, well under the
   // station's receive limit.
-  static constexpr std::size_t kChunkBytes = 256 * 1024;
+  static constexpr std::size_t kChunkBytes = std::size_t{256} * 1024;
 
   // `lens` names the lens profile in use, read at each photo.
   PhotoTaker(PhotoStore& store, StreamSink& sink, std::function<std::string()> lens);

@@ -1,0 +1,145 @@
+// CommandExecutor: settings commands reach the StateKeeper (or are refused with the field
+// named), a photo is refused when the disk cannot take it, request_state answers with the
+// state.
+#include "agent/commands/command_executor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tests/agent/support/recording_stream_sink.hpp"
+#include "tests/agent/support/temp_dir.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+using kapfix::agent::testing::RecordingStreamSink;
+using kapfix::agent::testing::TempDir;
+
+// The executor over real parts, all publishing into one recording sink.
+struct Rig {
+  explicit Rig(const std::filesystem::path& photo_dir) : store(photo_dir) {}
+
+  AgentConfig config;
+  RecordingStreamSink sink;
+  StateKeeper state{config, sink, true, nullptr};
+  ModeRunner modes{config, ModeRunnerOptions{}, state};
+  PhotoStore store;
+  PhotoTaker photos{store, sink, [] { return std::string("default"); }};
+  VideoDownlink video{sink, config.video};
+  CommandExecutor executor{CommandTargets{state, modes, photos, video, nullptr, true}};
+};
+
+kapfix::v1::Command Gains(float p) {
+  kapfix::v1::Command command;
+  command.mutable_set_gains()->set_p(p);
+  return command;
+}
+
+TEST(CommandExecutorTest, SetGainsUpdatesTheSettings) {
+  TempDir temp;
+  Rig rig(temp.path());
+  const kapfix::v1::Reply reply = rig.executor.Execute(Gains(0.4F));
+  EXPECT_TRUE(reply.ok()) << reply.reason();
+  EXPECT_FLOAT_EQ(static_cast<float>(rig.state.settings().controller.kp), 0.4F);
+}
+
+TEST(CommandExecutorTest, SetGainsPublishesTheNewState) {
+  TempDir temp;
+  Rig rig(temp.path());
+  rig.executor.Execute(Gains(0.4F));
+  const auto states = rig.sink.Messages<kapfix::v1::AgentState>();
+  ASSERT_FALSE(states.empty());
+  EXPECT_FLOAT_EQ(states.back().gains().p(), 0.4F);
+}
+
+TEST(CommandExecutorTest, OutOfRangeGainIsRefusedAndChangesNothing) {
+  TempDir temp;
+  Rig rig(temp.path());
+  const kapfix::v1::Reply reply = rig.executor.Execute(Gains(25.0F));  // kp is (0, 10]
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
+  EXPECT_NE(reply.reason().find("controller.kp"), std::string::npos) << reply.reason();
+  EXPECT_DOUBLE_EQ(rig.state.settings().controller.kp, ControllerConfig{}.kp);
+}
+
+TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
+  TempDir temp;
+  Rig rig(temp.path());
+  kapfix::v1::Command command;
+  command.set_set_photo_interval_s(5);
+  EXPECT_TRUE(rig.executor.Execute(command).ok());
+  EXPECT_DOUBLE_EQ(rig.state.settings().photos.interval_s, 5);
+}
+
+TEST(CommandExecutorTest, TakePhotoIsAcceptedWhenTheFolderIsWritable) {
+  TempDir temp;
+  Rig rig(temp.path() / "photos");
+  kapfix::v1::Command command;
+  command.mutable_take_photo()->set_note("bridge");
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  EXPECT_TRUE(reply.ok()) << reply.reason();
+}
+
+TEST(CommandExecutorTest, TakePhotoIsRefusedAsStorageWhenTheFolderCannotBeWritten) {
+  TempDir temp;
+  const std::filesystem::path not_a_folder = temp.path() / "photos";
+  std::ofstream(not_a_folder) << "a regular file";
+  Rig rig(not_a_folder);
+  kapfix::v1::Command command;
+  command.mutable_take_photo();
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_STORAGE);
+  EXPECT_NE(reply.reason().find(not_a_folder.string()), std::string::npos) << reply.reason();
+}
+
+TEST(CommandExecutorTest, RequestStateRepliesWithTheState) {
+  TempDir temp;
+  Rig rig(temp.path());
+  rig.executor.Execute(Gains(0.6F));
+  kapfix::v1::Command command;
+  command.mutable_request_state();
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  ASSERT_TRUE(reply.ok()) << reply.reason();
+  ASSERT_TRUE(reply.has_state());
+  EXPECT_FLOAT_EQ(reply.state().gains().p(), 0.6F);
+  EXPECT_EQ(reply.state().search().strategy(), rig.config.search.strategy);
+  EXPECT_TRUE(reply.state().simulated());
+}
+
+TEST(CommandExecutorTest, RequestStateCanAskForTheSliceReportAgain) {
+  TempDir temp;
+  Rig rig(temp.path());
+  kapfix::v1::SliceReport report;
+  report.set_recommended_slice(2);
+  report.set_finished(true);
+  rig.state.OnSliceReport(report);
+  kapfix::v1::Command command;
+  command.mutable_request_state()->set_resend_slice_report(true);
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  ASSERT_TRUE(reply.ok()) << reply.reason();
+  EXPECT_EQ(reply.state().last_slice_report().recommended_slice(), 2u);
+  EXPECT_EQ(rig.sink.Messages<kapfix::v1::SliceReport>().size(), 2u);
+}
+
+TEST(CommandExecutorTest, UnknownModeIsRefusedAsOutOfRange) {
+  TempDir temp;
+  Rig rig(temp.path());
+  kapfix::v1::Command command;
+  command.mutable_set_mode()->set_mode(kapfix::v1::MODE_UNSPECIFIED);
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
+}
+
+TEST(CommandExecutorTest, EmptyCommandIsRefusedAsUnknown) {
+  TempDir temp;
+  Rig rig(temp.path());
+  const kapfix::v1::Reply reply = rig.executor.Execute(kapfix::v1::Command());
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND);
+}
+
+}  // namespace
+}  // namespace kapfix::agent

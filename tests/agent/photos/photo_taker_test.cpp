@@ -1,0 +1,206 @@
+// PhotoTaker: a requested or periodic photo of the stabilised frame is stored by the writer
+// thread, then published in chunks that each carry the metadata; stored photos can be sent
+// again; a photo is refused up front when the folder cannot take it.
+#include "agent/photos/photo_taker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tests/agent/support/recording_stream_sink.hpp"
+#include "tests/agent/support/temp_dir.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+using kapfix::agent::testing::RecordingStreamSink;
+using kapfix::agent::testing::TempDir;
+using kapfix::agent::testing::WaitUntil;
+
+constexpr std::int64_t kFramePeriodUs = 100'000;  // a 10 fps camera
+
+CapturedFrame Frame(std::uint64_t index) {
+  cv::Mat image(48, 64, CV_8UC3);
+  cv::RNG rng(index + 1);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  return CapturedFrame{image, static_cast<std::int64_t>(index) * kFramePeriodUs, index};
+}
+
+TelemetryRecord Record(std::uint64_t index) {
+  TelemetryRecord record;
+  record.index = index;
+  record.capture_time_us = static_cast<std::int64_t>(index) * kFramePeriodUs;
+  return record;
+}
+
+void Step(PhotoTaker& taker, std::uint64_t index) {
+  taker.OnStep(Frame(index), FrameOutcome{}, Record(index));
+}
+
+std::string Concatenated(const std::vector<kapfix::v1::Photo>& chunks) {
+  std::string bytes;
+  for (const auto& chunk : chunks) bytes += chunk.data();
+  return bytes;
+}
+
+struct Rig {
+  TempDir temp;
+  PhotoStore store{temp.path() / "photos"};
+  RecordingStreamSink sink;
+  PhotoTaker taker{store, sink, [] { return std::string("6mm"); }};
+};
+
+TEST(PhotoTakerTest, RequestedPhotoOfTheNextFrameIsStoredAndPublished) {
+  Rig rig;
+  std::string error;
+  ASSERT_TRUE(rig.taker.Request("tower", &error)) << error;
+  Step(rig.taker, 0);
+  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
+  EXPECT_EQ(rig.taker.saved(), 1u);
+  const std::vector<kapfix::v1::PhotoMetadata> stored = rig.store.ListSince(0);
+  ASSERT_EQ(stored.size(), 1u);
+  const auto chunks = rig.sink.Messages<kapfix::v1::Photo>();
+  EXPECT_EQ(chunks.front().metadata().file_name(), stored[0].file_name());
+  EXPECT_EQ(Concatenated(chunks), rig.store.ReadFile(stored[0].file_name()));
+}
+
+TEST(PhotoTakerTest, RequestTakesOnlyOnePhoto) {
+  Rig rig;
+  std::string error;
+  ASSERT_TRUE(rig.taker.Request("", &error)) << error;
+  for (std::uint64_t i = 0; i < 5; ++i) Step(rig.taker, i);
+  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 1; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a second one would be late
+  EXPECT_EQ(rig.taker.saved(), 1u);
+  EXPECT_EQ(rig.store.count(), 1u);
+}
+
+TEST(PhotoTakerTest, NoPhotoWithoutARequestOrAnInterval) {
+  Rig rig;
+  for (std::uint64_t i = 0; i < 5; ++i) Step(rig.taker, i);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(rig.taker.saved(), 0u);
+  EXPECT_EQ(rig.sink.size(), 0u);
+}
+
+TEST(PhotoTakerTest, PhotoCarriesTheStepsMeasurements) {
+  Rig rig;
+  std::string error;
+  ASSERT_TRUE(rig.taker.Request("", &error)) << error;
+  TelemetryRecord record = Record(3);
+  record.displacement_x_px = 4.25;
+  record.displacement_y_px = -1.75;
+  record.angle_pan_deg = 2.5;
+  record.angle_tilt_deg = -1.0;
+  record.slice = 6;
+  record.confidence = 0.75;
+  rig.taker.OnStep(Frame(3), FrameOutcome{}, record);
+  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
+  const kapfix::v1::PhotoMetadata m = rig.sink.Messages<kapfix::v1::Photo>().front().metadata();
+  EXPECT_EQ(m.displacement().x_px(), 4);
+  EXPECT_FLOAT_EQ(m.displacement().x_subpx(), 0.25F);
+  EXPECT_EQ(m.displacement().y_px(), -2);
+  EXPECT_FLOAT_EQ(m.displacement().y_subpx(), 0.25F);
+  EXPECT_FLOAT_EQ(m.pan_angle_deg(), 2.5F);
+  EXPECT_FLOAT_EQ(m.tilt_angle_deg(), -1.0F);
+  EXPECT_EQ(m.slice(), 6u);
+  EXPECT_FLOAT_EQ(m.confidence(), 0.75F);
+  EXPECT_EQ(m.lens_profile(), "6mm");
+  EXPECT_EQ(m.width_px(), 64u);
+  EXPECT_EQ(m.height_px(), 48u);
+}
+
+TEST(PhotoTakerTest, IntervalTakesAPhotoEveryNSecondsOfCaptureTime) {
+  Rig rig;
+  rig.taker.SetInterval(1.0);
+  for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);  // 0 … 3 s of camera time
+  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 3; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(rig.taker.saved(), 3u);  // at 1, 2 and 3 s
+  EXPECT_EQ(rig.taker.failed(), 0u);
+}
+
+TEST(PhotoTakerTest, IntervalZeroStopsThePeriodicPhotos) {
+  Rig rig;
+  rig.taker.SetInterval(1.0);
+  rig.taker.SetInterval(0);
+  for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(rig.taker.saved(), 0u);
+}
+
+TEST(PhotoTakerTest, ResendRepublishesTheStoredPhotosSinceTheGivenTime) {
+  Rig rig;
+  const cv::Mat image(16, 16, CV_8UC3, cv::Scalar(10, 20, 30));
+  kapfix::v1::PhotoMetadata early;
+  early.set_capture_time_us(1000);
+  kapfix::v1::PhotoMetadata late;
+  late.set_capture_time_us(2000);
+  rig.store.Save(image, early, nullptr);
+  const kapfix::v1::PhotoMetadata kept = rig.store.Save(image, late, nullptr);
+  rig.taker.Resend(1500);
+  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const auto chunks = rig.sink.Messages<kapfix::v1::Photo>();
+  ASSERT_EQ(chunks.size(), 1u);
+  EXPECT_EQ(chunks[0].metadata().file_name(), kept.file_name());
+  EXPECT_EQ(chunks[0].data(), rig.store.ReadFile(kept.file_name()));
+}
+
+TEST(PhotoTakerTest, RequestIsRefusedWithTheReasonWhenTheFolderCannotBeWritten) {
+  TempDir temp;
+  const std::filesystem::path not_a_folder = temp.path() / "photos";
+  std::ofstream(not_a_folder) << "a regular file";
+  PhotoStore store(not_a_folder);
+  RecordingStreamSink sink;
+  PhotoTaker taker(store, sink, nullptr);
+  std::string error;
+  EXPECT_FALSE(taker.Request("", &error));
+  EXPECT_NE(error.find(not_a_folder.string()), std::string::npos) << error;
+  Step(taker, 0);  // the refused request takes nothing
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(taker.saved() + taker.failed(), 0u);
+}
+
+TEST(PhotoTakerTest, ChunksCoverTheFileWithContiguousOffsets) {
+  const std::string bytes(PhotoTaker::kChunkBytes * 5 / 2, 'x');
+  kapfix::v1::PhotoMetadata metadata;
+  metadata.set_file_name("photo-1-1.jpg");
+  const std::vector<kapfix::v1::Photo> chunks = PhotoTaker::Chunks(metadata, bytes);
+  ASSERT_EQ(chunks.size(), 3u);
+  std::uint64_t offset = 0;
+  for (const kapfix::v1::Photo& chunk : chunks) {
+    EXPECT_EQ(chunk.offset_bytes(), offset);
+    EXPECT_LE(chunk.data().size(), PhotoTaker::kChunkBytes);
+    EXPECT_EQ(chunk.total_bytes(), bytes.size());
+    offset += chunk.data().size();
+  }
+  EXPECT_EQ(offset, bytes.size());
+  EXPECT_EQ(Concatenated(chunks), bytes);
+}
+
+TEST(PhotoTakerTest, EveryChunkCarriesTheMetadata) {
+  const std::string bytes(PhotoTaker::kChunkBytes + 1, 'y');
+  kapfix::v1::PhotoMetadata metadata;
+  metadata.set_file_name("photo-5-2.jpg");
+  metadata.set_capture_time_us(5);
+  metadata.set_slice(3);
+  const std::vector<kapfix::v1::Photo> chunks = PhotoTaker::Chunks(metadata, bytes);
+  ASSERT_EQ(chunks.size(), 2u);
+  for (const kapfix::v1::Photo& chunk : chunks) {
+    EXPECT_EQ(chunk.metadata().file_name(), "photo-5-2.jpg");
+    EXPECT_EQ(chunk.metadata().slice(), 3u);
+    EXPECT_EQ(chunk.header().capture_time_us(), 5);
+  }
+}
+
+TEST(PhotoTakerTest, AFileOfExactlyOneChunkIsOneMessage) {
+  const std::string bytes(PhotoTaker::kChunkBytes, 'z');
+  EXPECT_EQ(PhotoTaker::Chunks(kapfix::v1::PhotoMetadata(), bytes).size(), 1u);
+}
+
+}  // namespace
+}  // namespace kapfix::agent
