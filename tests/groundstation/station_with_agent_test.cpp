@@ -1,12 +1,13 @@
 // The whole station against the real kapfix-agent in simulation on loopback (issue 4's list):
 // connect, run SSP, pick a slice, change a gain, capture a photo, replay a recording. The agent
 // runs as a child process (tests/integration/agent_process.hpp) flying the kite over aero1.jpg
-// in real time, with a free swing of 45 frames for SSP so that a test takes seconds.
+// in real time; the SSP panel asks for a free swing of 45 frames so that a test takes seconds.
 #include <gtest/gtest.h>
 
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QSpinBox>
 #include <QTemporaryDir>
 #include <fstream>
 #include <memory>
@@ -80,11 +81,19 @@ TEST_F(StationWithAgent, ConnectsAndShowsTheLinkUpAndTheAgentsMode) {
 
 TEST_F(StationWithAgent, RunsSspPicksTheRecommendedSliceAndFixates) {
   ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  auto* deadline = window_->ssp().findChild<QSpinBox*>();
+  ASSERT_NE(deadline, nullptr);
+  deadline->setValue(45);  // [frames] of free swing: 1.5 s
   window_->ssp().runAction()->trigger();
-  ASSERT_TRUE(WaitUntil([&] { return window_->ssp().recommended() > 0; }, kLongWait))
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        return state_.last_slice_report().finished() && state_.mode() == kapfix::v1::MODE_IDLE;
+      },
+      kLongWait))
       << agent_.log();
   EXPECT_EQ(window_->ssp().table().rowCount(), 9);
   const int recommended = window_->ssp().recommended();
+  EXPECT_EQ(recommended, static_cast<int>(state_.last_slice_report().recommended_slice()));
   window_->ssp().confirmAction()->trigger();
   EXPECT_TRUE(WaitUntil(
       [&] {
@@ -130,8 +139,9 @@ TEST_F(StationWithAgent, ReplaysARecordingOfTheLiveSession) {
   const QTemporaryDir dir;
   const QString path = dir.filePath(QStringLiteral("flight.kfxrec"));
   ASSERT_TRUE(recording_->startRecording(path));
+  window_->ssp().findChild<QSpinBox*>()->setValue(45);
   window_->ssp().runAction()->trigger();
-  ASSERT_TRUE(WaitUntil([&] { return window_->ssp().recommended() > 0; }, kLongWait));
+  ASSERT_TRUE(WaitUntil([&] { return state_.last_slice_report().finished(); }, kLongWait));
   const int recommended = window_->ssp().recommended();
   recording_->stopRecording();
   agent_.Stop();  // replay needs no agent
