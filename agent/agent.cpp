@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -166,6 +167,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   publisher_options.agent_id = config_.agent_id;
   publisher_options.heartbeat_interval = std::chrono::milliseconds(config_.link.heartbeat_ms);
   publisher_ = std::make_unique<StreamPublisher>(publisher_options);
+  // The log lines go to the station too; removed again in ~Agent, before the publisher goes.
+  log_publisher_ = std::make_shared<LogPublisher>(*publisher_);
+  spdlog::default_logger()->sinks().push_back(log_publisher_);
   photo_store_ = std::make_unique<PhotoStore>(config_.photos.dir);
   photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
     return state_ ? state_->settings().lens : config_.lens;
@@ -238,6 +242,10 @@ Agent::Agent(AgentConfig config, AgentOptions options)
 Agent::~Agent() {
   // The command server first: no command may reach parts that are going away.
   if (server_) server_->Stop();
+  if (log_publisher_) {
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), log_publisher_), sinks.end());
+  }
 }
 
 PipelineStats Agent::Run() {

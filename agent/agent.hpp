@@ -10,6 +10,7 @@
 #include "agent/commands/command_executor.hpp"
 #include "agent/commands/state_keeper.hpp"
 #include "agent/config/agent_config.hpp"
+#include "agent/downlink/log_publisher.hpp"
 #include "agent/downlink/telemetry_publisher.hpp"
 #include "agent/downlink/video_downlink.hpp"
 #include "agent/modes/mode_runner.hpp"
@@ -102,6 +103,7 @@ class Agent {
   // The link and the observers outlive the pipeline and the command server that use them
   // (members are destroyed in reverse order).
   std::unique_ptr<StreamPublisher> publisher_;
+  std::shared_ptr<LogPublisher> log_publisher_;
   std::unique_ptr<PhotoStore> photo_store_;
   std::unique_ptr<PhotoTaker> photos_;
   std::unique_ptr<VideoDownlink> video_;

@@ -51,6 +51,8 @@ class StationWithAgent : public ::testing::Test {
     window_->photos().setFolder(photos_.path());
     QObject::connect(&live_, &AgentClient::stateReceived,
                      [this](const kapfix::v1::AgentState& state) { state_ = state; });
+    QObject::connect(&live_, &AgentClient::telemetryReceived,
+                     [this](const kapfix::v1::Telemetry& /*telemetry*/) { ++telemetry_; });
     live_.connectToEndpoints(QString::fromStdString(agent_.command_endpoint()),
                              QString::fromStdString(agent_.stream_endpoint()));
   }
@@ -70,6 +72,13 @@ class StationWithAgent : public ::testing::Test {
   RecordingControls* recording_;  // owned by the window
   std::unique_ptr<MainWindow> window_;
   kapfix::v1::AgentState state_;  // the latest the agent published or replied
+  int telemetry_ = 0;             // telemetry messages received
+
+  // The streams flow: the subscription reached the agent, so nothing it publishes from now on
+  // is missed (a PUB drops what it sends before a subscriber is connected).
+  bool StreamsFlow() {
+    return WaitUntil([&] { return live_.linkState().up && telemetry_ > 0; }, kLongWait);
+  }
 };
 
 TEST_F(StationWithAgent, ConnectsAndShowsTheLinkUpAndTheAgentsMode) {
@@ -80,7 +89,7 @@ TEST_F(StationWithAgent, ConnectsAndShowsTheLinkUpAndTheAgentsMode) {
 }
 
 TEST_F(StationWithAgent, RunsSspPicksTheRecommendedSliceAndFixates) {
-  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
   auto* deadline = window_->ssp().findChild<QSpinBox*>();
   ASSERT_NE(deadline, nullptr);
   deadline->setValue(45);  // [frames] of free swing: 1.5 s
@@ -105,7 +114,7 @@ TEST_F(StationWithAgent, RunsSspPicksTheRecommendedSliceAndFixates) {
 }
 
 TEST_F(StationWithAgent, ChangesAGain) {
-  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
   auto* p = qobject_cast<QDoubleSpinBox*>(window_->settings().row(QStringLiteral("p"))->editor());
   p->setValue(0.75);
   EXPECT_TRUE(WaitUntil(
@@ -118,7 +127,7 @@ TEST_F(StationWithAgent, ChangesAGain) {
 }
 
 TEST_F(StationWithAgent, CapturesAPhotoIntoTheFolderWithItsSidecar) {
-  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
   window_->photos().captureAction()->trigger();
   const QDir folder(photos_.path());
   ASSERT_TRUE(WaitUntil(
@@ -135,7 +144,7 @@ TEST_F(StationWithAgent, CapturesAPhotoIntoTheFolderWithItsSidecar) {
 }
 
 TEST_F(StationWithAgent, ReplaysARecordingOfTheLiveSession) {
-  ASSERT_TRUE(WaitUntil([&] { return live_.linkState().up; }, kLongWait)) << agent_.log();
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
   const QTemporaryDir dir;
   const QString path = dir.filePath(QStringLiteral("flight.kfxrec"));
   ASSERT_TRUE(recording_->startRecording(path));
