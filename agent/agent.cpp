@@ -77,7 +77,8 @@ bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error
   if (!link.curve_secret_key_file.empty() || insecure) return true;
   for (const std::string& address : {link.command_address, link.stream_address}) {
     const bool local = address.starts_with("ipc://") || address.starts_with("inproc://") ||
-                       address.starts_with("tcp://127.") || address.starts_with("tcp://localhost:") ||
+                       address.starts_with("tcp://127.") ||
+                       address.starts_with("tcp://localhost:") ||
                        address.starts_with("tcp://[::1]:");
     if (!local) {
       if (error) {
@@ -180,8 +181,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       *publisher_, [video = video_.get()] { return video->dropped(); });
   // Stored calibrations replace the profiles' nominal deg/px (after the simulation took its
   // truth from the nominal one: the simulated lens does not change).
-  calibrations_ = std::make_unique<CalibrationStore>(
-      std::filesystem::path(config_.state_dir) / "calibration");
+  calibrations_ =
+      std::make_unique<CalibrationStore>(std::filesystem::path(config_.state_dir) / "calibration");
   for (LensProfile& lens : config_.lenses) {
     std::string why;
     if (const auto stored = calibrations_->Load(lens.name, &why)) {
@@ -194,8 +195,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     }
   }
   PhotoStore* store = photo_store_.get();
-  state_ = std::make_unique<StateKeeper>(config_, *publisher_, simulated_,
-                                         [store] { return store->count(); }, calibrations_.get());
+  state_ = std::make_unique<StateKeeper>(
+      config_, *publisher_, simulated_, [store] { return store->count(); }, calibrations_.get());
 
   ModeRunnerOptions modes;
   modes.start_mode = options_.start_mode;

@@ -148,9 +148,9 @@ int Main(int argc, char** argv) {
   stopper.join();
 
   if (!options.keep_telemetry) {
-    spdlog::info("processed {} frames in {:.1f} s ({} dropped, {} watchdog stalls, {} servo errors)",
-                 stats.processed, stats.wall_s, stats.dropped, stats.watchdog_stalls,
-                 stats.servo_errors);
+    spdlog::info(
+        "processed {} frames in {:.1f} s ({} dropped, {} watchdog stalls, {} servo errors)",
+        stats.processed, stats.wall_s, stats.dropped, stats.watchdog_stalls, stats.servo_errors);
     if (!stats.error.empty()) return Fail(stats.error, 1);
     return 0;
   }

@@ -174,9 +174,10 @@ int Run(int argc, char** argv) {
   options.lock_step = true;  // the camera never outruns the loop: no frame is grabbed for nothing
   Pipeline pipeline(source, servos, runner, {&telemetry, &video, &recorder}, options);
 
-  std::printf("flying %llu frames (strategy %s, telemetry on, video %.0f fps of camera time, "
-              "camera %.0f fps)…\n",
-              static_cast<unsigned long long>(frames), strategy.c_str(), video_fps, camera_fps);
+  std::printf(
+      "flying %llu frames (strategy %s, telemetry on, video %.0f fps of camera time, "
+      "camera %.0f fps)…\n",
+      static_cast<unsigned long long>(frames), strategy.c_str(), video_fps, camera_fps);
   const double cpu_start = CpuSeconds();
   const PipelineStats stats = pipeline.Run();
   const double cpu_s = CpuSeconds() - cpu_start;
@@ -188,17 +189,19 @@ int Run(int argc, char** argv) {
   std::printf("frames processed:       %llu in %.2f s (dropped %llu)\n",
               static_cast<unsigned long long>(stats.processed), stats.wall_s,
               static_cast<unsigned long long>(stats.dropped));
-  std::printf("fps (wall clock):       %.1f\n", static_cast<double>(stats.processed) / stats.wall_s);
+  std::printf("fps (wall clock):       %.1f\n",
+              static_cast<double>(stats.processed) / stats.wall_s);
   std::printf("fps per CPU-second:     %.1f   (CPU %.2f s, all threads, pinned to one CPU)\n",
               static_cast<double>(stats.processed) / cpu_s, cpu_s);
   std::printf("loop latency p50/p99:   %.3f / %.3f ms\n", Percentile(latency, 50),
               Percentile(latency, 99));
-  std::printf("telemetry sent/dropped: %llu / %llu; video sent %llu, dropped %llu; station read %llu\n",
-              static_cast<unsigned long long>(counters.telemetry_sent),
-              static_cast<unsigned long long>(counters.telemetry_dropped),
-              static_cast<unsigned long long>(video.sent()),
-              static_cast<unsigned long long>(video.dropped()),
-              static_cast<unsigned long long>(station.received()));
+  std::printf(
+      "telemetry sent/dropped: %llu / %llu; video sent %llu, dropped %llu; station read %llu\n",
+      static_cast<unsigned long long>(counters.telemetry_sent),
+      static_cast<unsigned long long>(counters.telemetry_dropped),
+      static_cast<unsigned long long>(video.sent()),
+      static_cast<unsigned long long>(video.dropped()),
+      static_cast<unsigned long long>(station.received()));
   std::printf("per frame: agent %.3f ms, cv::matchTemplate alone %.3f ms (ratio %.1fx)\n",
               per_frame_ms, match_template_ms, match_template_ms / per_frame_ms);
   return 0;

@@ -31,8 +31,8 @@ class FakeFrameSource : public FrameSource {
   // the sequence stopped.
   void FailNextGrabs(int count) { fail_grabs_ = count; }
 
-  double gain_db() const { return gain_db_; }          // [dB] last accepted
-  double exposure_us() const { return exposure_us_; }  // [µs] last accepted
+  double gain_db() const { return gain_db_; }           // [dB] last accepted
+  double exposure_us() const { return exposure_us_; }   // [µs] last accepted
   int open_count() const { return open_count_; }        // successful Opens
   int open_attempts() const { return open_attempts_; }  // every Open, failed ones too
 

@@ -30,9 +30,8 @@ bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
     return false;
   }
   if (real_time_) {
-    std::this_thread::sleep_until(
-        start_ + std::chrono::microseconds(
-                     std::llround(static_cast<double>(next_index_) * 1e6 / fps_)));
+    std::this_thread::sleep_until(start_ + std::chrono::microseconds(std::llround(
+                                               static_cast<double>(next_index_) * 1e6 / fps_)));
   }
   if (next_index_ > 0) platform_->Step();
   const SimulatedFrame captured = platform_->CaptureFrame();

@@ -42,8 +42,7 @@ kapfix::v1::Axis ToProto(SearchAxis axis) {
 }
 
 kapfix::v1::Channel ToProto(ColorChannel channel) {
-  return channel == ColorChannel::kRgbSum ? kapfix::v1::CHANNEL_RGB_SUM
-                                          : kapfix::v1::CHANNEL_GREEN;
+  return channel == ColorChannel::kRgbSum ? kapfix::v1::CHANNEL_RGB_SUM : kapfix::v1::CHANNEL_GREEN;
 }
 
 kapfix::v1::SliceScoreKind ToProto(SliceScoreKind kind) {

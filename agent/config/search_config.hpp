@@ -5,7 +5,6 @@
 #include "common/image/color_channel.hpp"
 #include "common/sampling/sampling_pattern.hpp"
 #include "common/search/search_strategy.hpp"
-
 #include "common/selection/slice_score.hpp"
 
 namespace kapfix::agent {
@@ -19,8 +18,8 @@ struct SearchConfig {
   int slices = 9;                    // horizontal bands for SSP
   SearchAxis axis = SearchAxis::kX;  // x (kite), y (boat) or both
   int range_px = 100;                // [px] R: shifts searched in [−R, R]
-  ColorChannel channel = ColorChannel::kGreen;  // green or rgb
-  bool subpixel = true;                         // parabola refinement
+  ColorChannel channel = ColorChannel::kGreen;       // green or rgb
+  bool subpixel = true;                              // parabola refinement
   SliceScoreKind slice_score = SliceScoreKind::kDc;  // what ranks the slices in SSP
   double dc_hysteresis_px = 1.5;                     // [px] of the dc-hyst score
   // Free-swing processes (SSP, PSS, recording) stop after this many frames or seconds.

@@ -17,8 +17,7 @@ namespace kapfix::agent {
 // here, before any lock is taken, so the sink can neither recurse nor deadlock on itself.
 class LogPublisher : public spdlog::sinks::sink {
  public:
-  explicit LogPublisher(StreamSink& stream,
-                        spdlog::level::level_enum level = spdlog::level::info);
+  explicit LogPublisher(StreamSink& stream, spdlog::level::level_enum level = spdlog::level::info);
 
   void log(const spdlog::details::log_msg& message) override;
   void flush() override {}

@@ -61,8 +61,8 @@ TelemetryPublisher::TelemetryPublisher(StreamSink& sink,
     : sink_(sink), video_dropped_(std::move(video_dropped)) {}
 
 kapfix::v1::Telemetry TelemetryPublisher::ToMessage(const TelemetryRecord& record, double fps,
-                                                     std::uint64_t video_dropped,
-                                                     std::uint64_t telemetry_dropped) {
+                                                    std::uint64_t video_dropped,
+                                                    std::uint64_t telemetry_dropped) {
   kapfix::v1::Telemetry t;
   t.mutable_header()->set_capture_time_us(record.capture_time_us);
   t.set_frame_number(record.index);

@@ -92,9 +92,10 @@ kapfix::v1::VideoFrame VideoDownlink::Encode(const CapturedFrame& frame,
     SetRect(outcome.patch, overlay->mutable_reference_patch());
     if (record.found) {
       // The displacement is current match minus reference (SPEC §1).
-      const cv::Rect match(outcome.patch.x + static_cast<int>(std::lround(record.displacement_x_px)),
-                           outcome.patch.y + static_cast<int>(std::lround(record.displacement_y_px)),
-                           outcome.patch.width, outcome.patch.height);
+      const cv::Rect match(
+          outcome.patch.x + static_cast<int>(std::lround(record.displacement_x_px)),
+          outcome.patch.y + static_cast<int>(std::lround(record.displacement_y_px)),
+          outcome.patch.width, outcome.patch.height);
       SetRect(match, overlay->mutable_current_match());
       overlay->set_has_match(true);
     }

@@ -34,8 +34,7 @@ class VideoDownlink : public StepObserver {
 
   // One camera frame as a VideoFrame message (scaled, JPEG at `quality`).
   static kapfix::v1::VideoFrame Encode(const CapturedFrame& frame, const FrameOutcome& outcome,
-                                       const TelemetryRecord& record,
-                                       const VideoConfig& settings);
+                                       const TelemetryRecord& record, const VideoConfig& settings);
 
  private:
   struct Pending {

@@ -23,8 +23,8 @@ std::optional<AgentMode> ParseAgentMode(std::string_view text);
 // A free-swing process (PSS, SSP, recording) stops with what it has after this many frames or
 // seconds, whichever comes first.
 struct SwingDeadline {
-  int frames = 300;        // [frames] ≥ 2
-  double seconds = 20.0;   // [s] of camera time, > 0
+  int frames = 300;       // [frames] ≥ 2
+  double seconds = 20.0;  // [s] of camera time, > 0
 };
 
 }  // namespace kapfix::agent

@@ -19,7 +19,7 @@ struct CalibrationRunOptions {
   // [frames] waited after each servo command before the view is read: the servos' latency
   // plus their travel.
   int settle_frames = 3;
-  cv::Rect patch;        // [px] where the view is read (the slice's patch)
+  cv::Rect patch;  // [px] where the view is read (the slice's patch)
   SamplingOptions sampling;
   SearchOptions search;  // axis is ignored: each move is read along its own axis
   ServoTargets park;     // [deg] position each move starts from

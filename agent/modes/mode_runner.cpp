@@ -49,8 +49,7 @@ SearchOptions MakeSearchOptions(const SearchConfig& search) {
 
 }  // namespace
 
-ModeRunner::ModeRunner(const AgentConfig& settings, ModeRunnerOptions options,
-                       ModeEvents& events)
+ModeRunner::ModeRunner(const AgentConfig& settings, ModeRunnerOptions options, ModeEvents& events)
     : options_(std::move(options)), events_(events), settings_(settings) {
   slice_ = (settings_.search.slices + 1) / 2;
   Rebuild();
@@ -241,8 +240,7 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
 
 bool ModeRunner::SwingDeadlineReached(std::uint64_t index) const {
   const auto frames = static_cast<double>(index - swing_start_index_ + 1);
-  return frames >= deadline_.frames ||
-         (frames - 1) * options_.frame_period_s >= deadline_.seconds;
+  return frames >= deadline_.frames || (frames - 1) * options_.frame_period_s >= deadline_.seconds;
 }
 
 FrameOutcome ModeRunner::Hold(AgentMode mode) const {
@@ -373,10 +371,10 @@ FrameOutcome ModeRunner::Calibrate(const cv::Mat& plane) {
       }
       loop_->SetCalibration(fitted);
       applied = fitted;
-      spdlog::info("calibrated lens {}: pan {:.5f} deg/px (residual {:.2f} px), tilt {:.5f} "
-                   "deg/px (residual {:.2f} px)",
-                   lens, fitted.pan_deg_per_px, pan->residual_px, fitted.tilt_deg_per_px,
-                   tilt->residual_px);
+      spdlog::info(
+          "calibrated lens {}: pan {:.5f} deg/px (residual {:.2f} px), tilt {:.5f} "
+          "deg/px (residual {:.2f} px)",
+          lens, fitted.pan_deg_per_px, pan->residual_px, fitted.tilt_deg_per_px, tilt->residual_px);
     } else {
       spdlog::error("calibration gave an unusable fit, the lens keeps its deg/px: {}", error);
     }
@@ -393,18 +391,17 @@ FrameOutcome ModeRunner::Calibrate(const cv::Mat& plane) {
 FrameOutcome ModeRunner::RecordFreeSwing(const cv::Mat& plane, const CapturedFrame& frame) {
   if (frame.index != swing_start_index_) {
     const SearchStrategy& strategy = *strategy_;
-    recording_.emplace_back(
-        frame.capture_time_us,
-        MeasureDisplacement(previous_plane_, plane, *recording_samples_, strategy,
-                            MakeSearchOptions(settings_.search)));
+    recording_.emplace_back(frame.capture_time_us,
+                            MeasureDisplacement(previous_plane_, plane, *recording_samples_,
+                                                strategy, MakeSearchOptions(settings_.search)));
     previous_plane_ = plane;
   }
   if (!SwingDeadlineReached(frame.index)) return Hold(AgentMode::kRecordFreeSwing);
 
   std::ostringstream csv;
-  csv << "# kapfix free swing: slice " << slice_ << " of " << settings_.search.slices
-      << ", patch " << settings_.search.patch_px << " px, axis "
-      << ToString(settings_.search.axis) << "\ncapture_time_us,displacement_px\n";
+  csv << "# kapfix free swing: slice " << slice_ << " of " << settings_.search.slices << ", patch "
+      << settings_.search.patch_px << " px, axis " << ToString(settings_.search.axis)
+      << "\ncapture_time_us,displacement_px\n";
   for (const auto& [time_us, displacement] : recording_) {
     csv << time_us << ',' << displacement << '\n';
   }

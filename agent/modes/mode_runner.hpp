@@ -91,15 +91,15 @@ class ModeRunner : public FrameProcessor {
   // the run replaces strategy_, not this one.
   std::shared_ptr<const SearchStrategy> run_strategy_;
   std::unique_ptr<FixationLoop> loop_;
-  cv::Mat reference_frame_;  // fixate / follow: the frame the reference was taken from
+  cv::Mat reference_frame_;            // fixate / follow: the frame the reference was taken from
   std::uint64_t reference_index_ = 0;  // its index
-  ServoTargets hold_{};      // [deg] where the servos stay during a free swing
+  ServoTargets hold_{};                // [deg] where the servos stay during a free swing
   SwingDeadline deadline_;
   std::uint64_t swing_start_index_ = 0;
   std::optional<SliceSelectionRun> slice_run_;
   std::optional<PatchSizeSelectionRun> pss_run_;
   std::optional<CalibrationRun> calibration_;
-  int calibration_progress_ = -1;  // moves_done last reported
+  int calibration_progress_ = -1;                           // moves_done last reported
   std::vector<std::pair<std::int64_t, double>> recording_;  // [µs, px] free swing samples
   cv::Mat previous_plane_;
   std::optional<SampleSet> recording_samples_;

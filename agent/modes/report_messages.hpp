@@ -40,7 +40,6 @@ kapfix::v1::PssReport MakePssReport(const PatchSizeSelection& selection,
 kapfix::v1::CalibrationReport MakeCalibrationReport(const std::string& lens_profile,
                                                     const std::optional<AxisCalibration>& pan,
                                                     const std::optional<AxisCalibration>& tilt,
-                                                    int moves_done, int moves_total,
-                                                    bool finished);
+                                                    int moves_done, int moves_total, bool finished);
 
 }  // namespace kapfix::agent

@@ -47,14 +47,13 @@ bool PhotoStore::CheckWritable(std::uintmax_t bytes, std::string* error) const {
   const std::filesystem::space_info space = std::filesystem::space(dir_, ec);
   if (ec) return fail(ec.message());
   if (space.available < 2 * bytes) {
-    return fail("disk full (" + std::to_string(space.available / 1024) + " KiB free, a photo needs about " +
-                std::to_string(bytes / 1024) + " KiB)");
+    return fail("disk full (" + std::to_string(space.available / 1024) +
+                " KiB free, a photo needs about " + std::to_string(bytes / 1024) + " KiB)");
   }
   return true;
 }
 
-kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image,
-                                           kapfix::v1::PhotoMetadata metadata,
+kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::PhotoMetadata metadata,
                                            std::string* jpeg) {
   std::vector<unsigned char> encoded;
   if (!cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})) {

@@ -34,11 +34,12 @@ PhotoTaker::~PhotoTaker() {
 
 bool PhotoTaker::Request(const std::string& note, std::string* error) {
   // About 3 bytes per pixel is more than a JPEG at quality 95 ever needs.
-  constexpr std::uintmax_t kRoughPhotoBytes = 3 * 1024 * 1024;
+  constexpr std::uintmax_t kRoughPhotoBytes = std::uintmax_t{3} * 1024 * 1024;
   if (!store_.CheckWritable(kRoughPhotoBytes, error)) return false;
   std::lock_guard lock(mutex_);
   if (jobs_.size() >= kMaxQueuedPhotos) {
-    if (error) *error = "photo refused: " + std::to_string(jobs_.size()) + " photos still being written";
+    if (error)
+      *error = "photo refused: " + std::to_string(jobs_.size()) + " photos still being written";
     return false;
   }
   requested_note_ = note;
@@ -83,8 +84,10 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcom
   auto* d = metadata.mutable_displacement();
   d->set_x_px(static_cast<std::int32_t>(std::lround(record.displacement_x_px)));
   d->set_y_px(static_cast<std::int32_t>(std::lround(record.displacement_y_px)));
-  d->set_x_subpx(static_cast<float>(record.displacement_x_px - std::round(record.displacement_x_px)));
-  d->set_y_subpx(static_cast<float>(record.displacement_y_px - std::round(record.displacement_y_px)));
+  d->set_x_subpx(
+      static_cast<float>(record.displacement_x_px - std::round(record.displacement_x_px)));
+  d->set_y_subpx(
+      static_cast<float>(record.displacement_y_px - std::round(record.displacement_y_px)));
   metadata.set_pan_angle_deg(static_cast<float>(record.angle_pan_deg));
   metadata.set_tilt_angle_deg(static_cast<float>(record.angle_tilt_deg));
   metadata.set_slice(static_cast<std::uint32_t>(record.slice));
@@ -119,7 +122,8 @@ std::vector<kapfix::v1::Photo> PhotoTaker::Chunks(const kapfix::v1::PhotoMetadat
 void PhotoTaker::Offer(const kapfix::v1::PhotoMetadata& metadata, const std::string& bytes) {
   for (const kapfix::v1::Photo& chunk : Chunks(metadata, bytes)) {
     if (!sink_.Publish(chunk)) {
-      spdlog::warn("photo {} not sent now (link queue full); it stays on disk", metadata.file_name());
+      spdlog::warn("photo {} not sent now (link queue full); it stays on disk",
+                   metadata.file_name());
       return;
     }
   }

@@ -81,8 +81,8 @@ bool Pipeline::Reconnect(const std::string& reason) {
     if (stop_) break;
     std::string error;
     if (source_.Open(&error)) {
-      spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0,
-                   attempt, source_.Describe());
+      spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0, attempt,
+                   source_.Describe());
       return true;
     }
     spdlog::warn("camera reconnect attempt {} failed: {}; next in {} ms", attempt, error,

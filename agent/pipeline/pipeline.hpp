@@ -44,11 +44,11 @@ struct PipelineOptions {
 };
 
 struct PipelineStats {
-  std::uint64_t processed = 0;     // control steps run
-  std::uint64_t dropped = 0;       // stale frames replaced before control took them
-  std::uint64_t grab_errors = 0;   // failed Grabs
+  std::uint64_t processed = 0;          // control steps run
+  std::uint64_t dropped = 0;            // stale frames replaced before control took them
+  std::uint64_t grab_errors = 0;        // failed Grabs
   std::uint64_t camera_reconnects = 0;  // outages the camera came back from
-  std::uint64_t servo_errors = 0;  // refused or failed servo commands
+  std::uint64_t servo_errors = 0;       // refused or failed servo commands
   std::uint64_t watchdog_stalls = 0;
   double wall_s = 0;  // [s] from start to the last step
   std::string error;  // why the run ended early, if it did

@@ -22,8 +22,8 @@ struct TelemetryRecord {
   double angle_tilt_deg = 0;
   double loop_latency_ms = 0;  // [ms] frame taken → servos commanded (wall clock)
   AgentMode mode = AgentMode::kIdle;
-  int slice = 0;                // [1..slice_count] slice in use; 0 = none
-  std::int64_t distance = 0;    // [grey level²] SSD at the match
+  int slice = 0;                                 // [1..slice_count] slice in use; 0 = none
+  std::int64_t distance = 0;                     // [grey level²] SSD at the match
   std::optional<std::uint64_t> reference_frame;  // fixate: index of the frame whose view is held
   // [px] simulation only: the view's true residual offset from the reference frame's view.
   std::optional<double> view_offset_x_px;

@@ -12,8 +12,8 @@
 namespace kapfix {
 
 SliceSelectionRun::SliceSelectionRun(const cv::Mat& first_plane, const SearchStrategy& strategy,
-                                     SliceSelectionOptions options)
-    : strategy_(strategy), options_(std::move(options)) {
+                                     const SliceSelectionOptions& options)
+    : strategy_(strategy), options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("SliceSelectionRun: " + error);
   CheckSwingPlanes({first_plane}, "SliceSelectionRun");
@@ -24,8 +24,8 @@ SliceSelectionRun::SliceSelectionRun(const cv::Mat& first_plane, const SearchStr
   for (std::size_t i = 0; i < count; ++i) {
     SliceScore& slice = slices_[i];
     slice.index = static_cast<int>(i) + 1;
-    slice.patch = SlicePatch(first_plane.size(), options_.slice_count, slice.index,
-                             options_.patch_size);
+    slice.patch =
+        SlicePatch(first_plane.size(), options_.slice_count, slice.index, options_.patch_size);
     source_[i] = i;
     // Outer slices clamped into the frame can coincide: measure such a patch once.
     for (std::size_t j = 0; j < i; ++j) {

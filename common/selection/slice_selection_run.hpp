@@ -23,7 +23,7 @@ class SliceSelectionRun {
   // strategy must outlive the run. Throws std::invalid_argument for invalid options or a patch
   // that does not fit the frame.
   SliceSelectionRun(const cv::Mat& first_plane, const SearchStrategy& strategy,
-                    SliceSelectionOptions options);
+                    const SliceSelectionOptions& options);
 
   // One graph sample per slice: `plane` against the previous frame. Throws
   // std::invalid_argument when its size or type differs from the first plane's.

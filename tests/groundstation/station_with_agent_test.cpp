@@ -82,8 +82,8 @@ class StationWithAgent : public ::testing::Test {
 };
 
 TEST_F(StationWithAgent, ConnectsAndShowsTheLinkUpAndTheAgentsMode) {
-  ASSERT_TRUE(WaitUntil(
-      [&] { return window_->status().linkText() == QStringLiteral("LINK UP"); }, kLongWait))
+  ASSERT_TRUE(WaitUntil([&] { return window_->status().linkText() == QStringLiteral("LINK UP"); },
+                        kLongWait))
       << agent_.log();
   EXPECT_TRUE(WaitUntil([&] { return state_.mode() == kapfix::v1::MODE_IDLE; }, kLongWait));
 }
@@ -130,9 +130,9 @@ TEST_F(StationWithAgent, CapturesAPhotoIntoTheFolderWithItsSidecar) {
   ASSERT_TRUE(StreamsFlow()) << agent_.log();
   window_->photos().captureAction()->trigger();
   const QDir folder(photos_.path());
-  ASSERT_TRUE(WaitUntil(
-      [&] { return !folder.entryList({QStringLiteral("*.jpg")}, QDir::Files).isEmpty(); },
-      kLongWait))
+  ASSERT_TRUE(
+      WaitUntil([&] { return !folder.entryList({QStringLiteral("*.jpg")}, QDir::Files).isEmpty(); },
+                kLongWait))
       << agent_.log();
   const QString name = folder.entryList({QStringLiteral("*.jpg")}, QDir::Files).front();
   EXPECT_TRUE(QFile::exists(folder.filePath(name + QStringLiteral(".json"))));

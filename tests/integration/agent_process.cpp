@@ -44,18 +44,12 @@ AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
   stream.Release();
 
   std::vector<std::string> args = {
-      KAPFIX_AGENT,
-      "--sim",
-      "--scene",
-      std::string(KAPFIX_OPENCV_DATA_DIR) + "/aero1.jpg",
-      "--command-address",
-      "tcp://127.0.0.1:" + std::to_string(command_port_),
-      "--stream-address",
-      "tcp://127.0.0.1:" + std::to_string(stream_port_),
-      "--photos",
-      photos().string(),
-      "--state-dir",
-      (folder_ / "state").string()};
+      KAPFIX_AGENT,        "--sim",
+      "--scene",           std::string(KAPFIX_OPENCV_DATA_DIR) + "/aero1.jpg",
+      "--command-address", "tcp://127.0.0.1:" + std::to_string(command_port_),
+      "--stream-address",  "tcp://127.0.0.1:" + std::to_string(stream_port_),
+      "--photos",          photos().string(),
+      "--state-dir",       (folder_ / "state").string()};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());

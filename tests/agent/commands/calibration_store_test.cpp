@@ -49,8 +49,7 @@ TEST(CalibrationStoreTest, ACorruptFileIsIgnoredNamingIt) {
 
 TEST(CalibrationStoreTest, AZeroSlopeIsNotLoaded) {
   TempDir dir;
-  std::ofstream(dir.path() / "default.json")
-      << R"({"pan_deg_per_px": 0, "tilt_deg_per_px": 0.1})";
+  std::ofstream(dir.path() / "default.json") << R"({"pan_deg_per_px": 0, "tilt_deg_per_px": 0.1})";
   const CalibrationStore store(dir.path());
   std::string error;
   EXPECT_FALSE(store.Load("default", &error).has_value());

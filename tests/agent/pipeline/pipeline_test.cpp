@@ -179,7 +179,8 @@ TEST(PipelineTest, ALongCameraOutageIsNotAControlStall) {
   });
   const PipelineStats stats = pipeline.Run();
   stopper.join();
-  EXPECT_EQ(stats.watchdog_stalls, 0u) << "the servos must hold, not park, while the camera is away";
+  EXPECT_EQ(stats.watchdog_stalls, 0u)
+      << "the servos must hold, not park, while the camera is away";
   EXPECT_GE(rig.source->open_attempts(), 3) << "reconnection was retried";
   EXPECT_EQ(stats.camera_reconnects, 0u);
 }

@@ -1,7 +1,6 @@
 // The whole agent in simulation: SimFrameSource and SimServoDriver over one platform, the
 // pipeline's threads in lock-step, the predictive controller.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -19,10 +18,10 @@ AgentConfig KiteConfig(ControllerKind controller) {
   config.controller.kind = controller;
   // A private link per agent: tests run side by side.
   static int agents = 0;
-  const std::string base = (std::filesystem::temp_directory_path() /
-                            ("kapfix_sim_flight_" + std::to_string(::getpid()) + "_" +
-                             std::to_string(++agents)))
-                               .string();
+  const std::string base =
+      (std::filesystem::temp_directory_path() /
+       ("kapfix_sim_flight_" + std::to_string(::getpid()) + "_" + std::to_string(++agents)))
+          .string();
   config.link.command_address = "ipc://" + base + ".cmd";
   config.link.stream_address = "ipc://" + base + ".stream";
   config.photos.dir = base + "_photos";

@@ -67,8 +67,7 @@ TEST(PatchSizeSelectionTest, ReportsProgressAfterEachFrameForAllSizes) {
   std::vector<std::pair<int, int>> calls;
   SelectPatchSize({plane, plane, plane}, Exhaustive(), Options(),
                   [&](int done, int total) { calls.emplace_back(done, total); });
-  EXPECT_EQ(calls,
-            (std::vector<std::pair<int, int>>{{3, 6}, {6, 6}}));
+  EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{3, 6}, {6, 6}}));
 }
 
 TEST(PatchSizeSelectionTest, RefusesASizeThatDoesNotFitTheFrame) {
