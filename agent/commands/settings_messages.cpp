@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "agent/modes/report_messages.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -43,20 +45,6 @@ kapfix::v1::Axis ToProto(SearchAxis axis) {
 
 kapfix::v1::Channel ToProto(ColorChannel channel) {
   return channel == ColorChannel::kRgbSum ? kapfix::v1::CHANNEL_RGB_SUM : kapfix::v1::CHANNEL_GREEN;
-}
-
-kapfix::v1::SliceScoreKind ToProto(SliceScoreKind kind) {
-  switch (kind) {
-    case SliceScoreKind::kDc:
-      return kapfix::v1::SLICE_SCORE_KIND_DC;
-    case SliceScoreKind::kDcHysteresis:
-      return kapfix::v1::SLICE_SCORE_KIND_DC_HYSTERESIS;
-    case SliceScoreKind::kFft:
-      return kapfix::v1::SLICE_SCORE_KIND_FFT;
-    case SliceScoreKind::kSingleShot:
-      return kapfix::v1::SLICE_SCORE_KIND_SINGLE_SHOT;
-  }
-  return kapfix::v1::SLICE_SCORE_KIND_UNSPECIFIED;
 }
 
 void ApplyGains(const kapfix::v1::Gains& g, ControllerConfig* c) {

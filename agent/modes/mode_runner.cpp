@@ -285,23 +285,27 @@ FrameOutcome ModeRunner::Fixate(const CapturedFrame& frame, const ServoTargets& 
   return outcome;
 }
 
+SwingProgress ModeRunner::ProgressOf(int frames_used, bool done) const {
+  SwingProgress progress;
+  progress.done = frames_used;
+  progress.total = deadline_.frames;
+  progress.finished = done;
+  progress.deadline_reached = done && frames_used < deadline_.frames;
+  return progress;
+}
+
 FrameOutcome ModeRunner::SelectSlice(const cv::Mat& plane, std::uint64_t index) {
   if (index != swing_start_index_) slice_run_->AddFrame(plane);
   const bool done = SwingDeadlineReached(index);
   const int used = slice_run_->frames_used();
   if (done || used % kProgressEveryFrames == 0) {
-    SwingProgress progress;
-    progress.done = used;
-    progress.total = deadline_.frames;
-    progress.finished = done;
-    progress.deadline_reached = done && used < deadline_.frames;
+    const SwingProgress progress = ProgressOf(used, done);
     const SliceSelection selection = slice_run_->Result(progress.deadline_reached);
     SliceReportContext context;
     context.score = settings_.search.slice_score;
     context.hysteresis_px = settings_.search.dc_hysteresis_px;
     context.patch_size_px = settings_.search.patch_px;
     context.strategy = settings_.search.strategy;
-    if (done) progress.done = used;
     events_.OnSliceReport(MakeSliceReport(selection, context, progress));
     if (done) {
       // The recommended slice becomes the one in use; the operator confirms it (or picks
@@ -321,11 +325,7 @@ FrameOutcome ModeRunner::SelectPatchSize(const cv::Mat& plane, std::uint64_t ind
   const bool done = SwingDeadlineReached(index);
   const int used = pss_run_->frames_used();
   if (done || used % kProgressEveryFrames == 0) {
-    SwingProgress progress;
-    progress.done = used;
-    progress.total = deadline_.frames;
-    progress.finished = done;
-    progress.deadline_reached = done && used < deadline_.frames;
+    const SwingProgress progress = ProgressOf(used, done);
     const PatchSizeSelection selection = pss_run_->Result();
     events_.OnPssReport(MakePssReport(selection, pss_run_->graphs(), progress));
     if (done) {

@@ -11,6 +11,7 @@
 #include "agent/modes/agent_mode.hpp"
 #include "agent/modes/calibration_run.hpp"
 #include "agent/modes/mode_events.hpp"
+#include "agent/modes/report_messages.hpp"
 #include "agent/pipeline/frame_processor.hpp"
 #include "common/control/predictive_controller.hpp"
 #include "common/fixation/fixation_loop.hpp"
@@ -66,6 +67,7 @@ class ModeRunner : public FrameProcessor {
              const ServoTargets& current);
   void SetMode(AgentMode mode);
   bool SwingDeadlineReached(std::uint64_t index) const;
+  SwingProgress ProgressOf(int frames_used, bool done) const;
   FrameOutcome Fixate(const CapturedFrame& frame, const ServoTargets& current, double dt_s);
   FrameOutcome SelectSlice(const cv::Mat& plane, std::uint64_t index);
   FrameOutcome SelectPatchSize(const cv::Mat& plane, std::uint64_t index);

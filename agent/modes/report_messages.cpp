@@ -5,6 +5,17 @@
 namespace kapfix::agent {
 namespace {
 
+void FillAxis(const std::optional<AxisCalibration>& fit, kapfix::v1::AxisCalibration* axis) {
+  if (!fit) return;
+  axis->set_units_per_px_median(fit->units_per_px_median);
+  axis->set_units_per_px_fit(fit->units_per_px_fit);
+  axis->set_residual_px(fit->residual_px);
+  axis->set_samples(static_cast<std::uint32_t>(fit->samples));
+  axis->set_valid(std::isfinite(fit->units_per_px_fit) && fit->units_per_px_fit != 0.0);
+}
+
+}  // namespace
+
 kapfix::v1::SliceScoreKind ToProto(SliceScoreKind kind) {
   switch (kind) {
     case SliceScoreKind::kDc:
@@ -18,17 +29,6 @@ kapfix::v1::SliceScoreKind ToProto(SliceScoreKind kind) {
   }
   return kapfix::v1::SLICE_SCORE_KIND_UNSPECIFIED;
 }
-
-void FillAxis(const std::optional<AxisCalibration>& fit, kapfix::v1::AxisCalibration* axis) {
-  if (!fit) return;
-  axis->set_units_per_px_median(fit->units_per_px_median);
-  axis->set_units_per_px_fit(fit->units_per_px_fit);
-  axis->set_residual_px(fit->residual_px);
-  axis->set_samples(static_cast<std::uint32_t>(fit->samples));
-  axis->set_valid(std::isfinite(fit->units_per_px_fit) && fit->units_per_px_fit != 0.0);
-}
-
-}  // namespace
 
 kapfix::v1::SliceReport MakeSliceReport(const SliceSelection& selection,
                                         const SliceReportContext& context,

@@ -28,6 +28,9 @@ struct SliceReportContext {
   std::string strategy;
 };
 
+// The ranking score of SSP as kapfix.v1 names it (reports and the agent's settings).
+kapfix::v1::SliceScoreKind ToProto(SliceScoreKind kind);
+
 kapfix::v1::SliceReport MakeSliceReport(const SliceSelection& selection,
                                         const SliceReportContext& context,
                                         const SwingProgress& progress);
