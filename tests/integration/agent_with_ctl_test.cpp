@@ -53,7 +53,9 @@ TEST(AgentWithCtlTest, FixateConvergesUnderTheRmsTarget) {
   AgentProcess agent({"--mode", "idle", "--max-speed", "--report", report.string()});
   const auto fixate = agent.Ctl("fixate");
   ASSERT_EQ(fixate.exit_code, 0) << fixate.err << agent.log();
-  const auto watched = agent.Ctl("watch --count 900");  // 900 frames of fixation = 30 s flown
+  // 1,800 frames of fixation (60 s flown): the start-up transient depends on the swing phase at
+  // which the fixate command lands, and must not dominate the figure.
+  const auto watched = agent.Ctl("watch --count 1800");
   ASSERT_EQ(watched.exit_code, 0) << watched.err;
   ASSERT_EQ(agent.Stop(), 0) << agent.log();
   std::ifstream file(report / "summary.json");
@@ -62,7 +64,7 @@ TEST(AgentWithCtlTest, FixateConvergesUnderTheRmsTarget) {
   std::filesystem::remove_all(report);
   ASSERT_TRUE(summary["rms_error_px"].is_number()) << summary.dump();
   EXPECT_LE(summary["rms_error_px"].get<double>(), 3.0) << summary.dump();
-  EXPECT_GE(summary["frames"].get<int>(), 900) << summary.dump();
+  EXPECT_GE(summary["frames"].get<int>(), 1800) << summary.dump();
   EXPECT_EQ(summary["lock_lost_pct"].get<double>(), 0.0) << summary.dump();
 }
 
