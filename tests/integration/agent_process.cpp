@@ -20,16 +20,7 @@
 extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, for posix_spawn
 
 namespace kapfix::testing {
-namespace {
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
   std::string pattern =
@@ -106,17 +97,9 @@ AgentProcess::CtlOutcome AgentProcess::Ctl(const std::string& args) const {
   const std::filesystem::path err_file = folder_ / "ctl.err";
   const std::string command = std::string(KAPFIX_CTL) + " --agent 127.0.0.1 --command-port " +
                               std::to_string(command_port_) + " --stream-port " +
-                              std::to_string(stream_port_) + " --timeout 5000 " + args + " 2>" +
-                              err_file.string();
-  CtlOutcome outcome;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) outcome.out += buffer.data();
-  const int status = ::pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  outcome.err = ReadFile(err_file);
-  return outcome;
+                              std::to_string(stream_port_) + " --timeout 5000 " + args;
+  const ProcessOutcome run = RunProcess(command, err_file);
+  return {run.exit_code, run.out, run.err};
 }
 
 }  // namespace kapfix::testing

@@ -31,13 +31,6 @@ struct Outcome {
   std::string err;
 };
 
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
-
 // Publishes telemetry every 5 ms while it lives, as a flying agent does.
 class TelemetryPump {
  public:
@@ -80,17 +73,9 @@ class CtlTest : public ::testing::Test {
   }
 
   Outcome RunRaw(const std::string& args) {
-    const std::filesystem::path err_file = folder_ / "stderr.txt";
-    const std::string command = std::string(KAPFIX_CTL) + " " + args + " 2>" + err_file.string();
-    Outcome outcome;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) return outcome;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) outcome.out += buffer.data();
-    const int status = ::pclose(pipe);
-    outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    outcome.err = ReadFile(err_file);
-    return outcome;
+    const ProcessOutcome run =
+        RunProcess(std::string(KAPFIX_CTL) + " " + args, folder_ / "stderr.txt");
+    return {run.exit_code, run.out, run.err};
   }
 
   FakeAgent agent_;

@@ -5,6 +5,7 @@
 // station that sends exactly the frames a test wants, and a port on which nothing listens.
 
 #include <chrono>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,16 @@ namespace kapfix::testing {
 inline constexpr const char* kAgentId = "test-agent";
 // Every wait in these tests is bounded by this (a failing test fails, it does not hang).
 inline constexpr auto kWait = std::chrono::milliseconds(3000);
+
+// A command line run as a script runs it (popen): its exit code (-1 when it did not exit
+// normally), its stdout, and its stderr, which the command line redirects to `err_file`.
+struct ProcessOutcome {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+ProcessOutcome RunProcess(const std::string& command_line, const std::filesystem::path& err_file);
+std::string ReadFile(const std::filesystem::path& path);
 
 int PortOf(const std::string& endpoint);  // "tcp://127.0.0.1:41234" → 41234
 
