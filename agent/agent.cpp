@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "agent/capture/aravis_frame_source.hpp"
@@ -100,6 +101,13 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   if (!CheckLinkExposure(config_.link, options_.insecure, &error)) {
     throw std::runtime_error(error);
   }
+  std::optional<CurveServerKeys> curve;
+  if (!config_.link.curve_secret_key_file.empty()) {
+    curve = ReadCurveServerKeys(config_.link.curve_secret_key_file,
+                                config_.link.curve_authorized_keys_file, &error);
+    if (!curve) throw std::runtime_error(error);
+    spdlog::info("link: CurveZMQ, {} authorised station key(s)", curve->authorized_stations.size());
+  }
   if (options_.insecure && config_.link.curve_secret_key_file.empty()) {
     spdlog::warn("--insecure: the link is open to anyone who can reach {} and {}",
                  config_.link.command_address, config_.link.stream_address);
@@ -167,6 +175,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   publisher_options.bind_endpoint = config_.link.stream_address;
   publisher_options.agent_id = config_.agent_id;
   publisher_options.heartbeat_interval = std::chrono::milliseconds(config_.link.heartbeat_ms);
+  publisher_options.curve = curve;
   publisher_ = std::make_unique<StreamPublisher>(publisher_options);
   // The log lines go to the station too; removed again in ~Agent, before the publisher goes.
   log_publisher_ = std::make_shared<LogPublisher>(*publisher_);
@@ -235,6 +244,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   CommandServerOptions server_options;
   server_options.bind_endpoint = config_.link.command_address;
   server_options.agent_id = config_.agent_id;
+  server_options.curve = curve;
   server_ = std::make_unique<CommandServer>(*executor_, server_options);
   stream_endpoint_ = publisher_->Start();
   command_endpoint_ = server_->Start();

@@ -5,6 +5,7 @@
 #include <QSettings>
 #include <cstdio>
 #include <optional>
+#include <string>
 
 #include "groundstation/client/agent_address.hpp"
 #include "groundstation/client/link_resync.hpp"
@@ -14,6 +15,7 @@
 #include "groundstation/recording/recording_controls.hpp"
 #include "groundstation/snapshot/ssp_screenshot.hpp"
 #include "groundstation/status/connection_bar.hpp"
+#include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 
 namespace {
@@ -55,15 +57,42 @@ int main(int argc, char** argv) {
   const QCommandLineOption font_size(QStringLiteral("font-size"),
                                      QStringLiteral("Text size [pt] (default 11.5)."),
                                      QStringLiteral("pt"));
-  parser.addOptions({agent, command_port, stream_port, replay, screenshot, run_ssp, font_size});
+  const QCommandLineOption key(
+      QStringLiteral("key"),
+      QStringLiteral("This station's secret key file (kapfix-keygen); with --agent-key the link "
+                     "uses CurveZMQ."),
+      QStringLiteral("file"));
+  const QCommandLineOption agent_key(QStringLiteral("agent-key"),
+                                     QStringLiteral("The agent's public key file (its .pub)."),
+                                     QStringLiteral("file"));
+  parser.addOptions(
+      {agent, command_port, stream_port, replay, screenshot, run_ssp, font_size, key, agent_key});
   parser.process(app);
+
+  kapfix::station::ZmqAgentClientOptions client_options;
+  if (parser.isSet(key) != parser.isSet(agent_key)) {
+    std::fprintf(stderr, "kapfix-station: --key and --agent-key go together\n");
+    return 2;
+  }
+  if (parser.isSet(key)) {
+    std::string why;
+    const auto station = kapfix::link::ReadSecretKeyFile(parser.value(key).toStdString(), &why);
+    const auto agent_public =
+        station ? kapfix::link::ReadPublicKeyFile(parser.value(agent_key).toStdString(), &why)
+                : std::nullopt;
+    if (!agent_public) {
+      std::fprintf(stderr, "kapfix-station: %s\n", why.c_str());
+      return 2;
+    }
+    client_options.curve = kapfix::link::CurveClientKeys{*station, *agent_public};
+  }
 
   QFont font = QApplication::font();
   font.setPointSizeF(parser.isSet(font_size) ? parser.value(font_size).toDouble() : kDefaultFontPt);
   QApplication::setFont(font);
 
   using namespace kapfix::station;
-  ZmqAgentClient live;
+  ZmqAgentClient live(client_options);
   SwitchableAgentClient views(live);
   const LinkResync resync(live, kapfix::v1::NowMicros());
   // The window's toolbar takes ownership of these two.

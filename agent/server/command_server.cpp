@@ -68,6 +68,7 @@ struct CommandServer::Impl {
   const CommandValidator validator;
 
   std::unique_ptr<zmq::context_t> context;
+  std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
   std::thread thread;
 
   std::atomic<std::uint64_t> commands_ok{0};
@@ -94,6 +95,7 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
                 static_cast<int>(options.zmtp_heartbeat_interval.count()));
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
+    if (options.curve) RequireCurve(*socket, *options.curve);
     socket->bind(options.bind_endpoint);
     bound.set_value(socket->get(zmq::sockopt::last_endpoint));
   } catch (const zmq::error_t& error) {
@@ -287,15 +289,10 @@ CommandServer::~CommandServer() { Stop(); }
 
 std::string CommandServer::Start() {
   if (impl_->thread.joinable()) throw std::runtime_error("command server already started");
-  return StartSocketThread(impl_.get());
+  return StartSocketThread(impl_.get(), "command server");
 }
 
-void CommandServer::Stop() {
-  if (!impl_->thread.joinable()) return;
-  impl_->context->shutdown();  // wakes the blocking receive with ETERM
-  impl_->thread.join();
-  impl_->context.reset();
-}
+void CommandServer::Stop() { StopSocketThread(impl_.get()); }
 
 CommandServer::Counters CommandServer::counters() const {
   Counters counters;
@@ -304,6 +301,7 @@ CommandServer::Counters CommandServer::counters() const {
   counters.heartbeats_echoed = impl_->heartbeats_echoed.load();
   counters.heartbeats_ignored = impl_->heartbeats_ignored.load();
   counters.last_station_heard_us = impl_->last_station_heard_us.load();
+  if (impl_->zap) counters.keys_refused = impl_->zap->counters().refused;
   return counters;
 }
 

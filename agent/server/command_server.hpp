@@ -12,10 +12,12 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "agent/server/agent_control.hpp"
 #include "agent/server/command_validator.hpp"
+#include "agent/server/curve_server_keys.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 
 namespace kapfix::agent {
@@ -34,6 +36,8 @@ struct CommandServerOptions {
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{3000};
   CommandLimits limits;
+  // CurveZMQ: encrypt every connection and accept only the listed stations. Unset: plain.
+  std::optional<CurveServerKeys> curve;
 };
 
 class CommandServer {
@@ -45,6 +49,7 @@ class CommandServer {
     std::uint64_t heartbeats_ignored = 0;    // [count] malformed or replayed heartbeats
     std::int64_t last_station_heard_us = 0;  // [µs since epoch] last accepted command or
                                              // heartbeat; 0 = never (link-loss detection)
+    std::uint64_t keys_refused = 0;          // [count] CurveZMQ handshakes refused (unknown key)
   };
 
   // `control` must outlive the server (or at least Stop()).

@@ -77,6 +77,7 @@ struct StreamPublisher::Impl {
   bool stopping = false;
 
   std::unique_ptr<zmq::context_t> context;
+  std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
   std::thread thread;
 
   std::atomic<std::uint64_t> telemetry_sent{0};
@@ -105,6 +106,7 @@ void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
                 static_cast<int>(options.zmtp_heartbeat_interval.count()));
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
+    if (options.curve) RequireCurve(*socket, *options.curve);
     socket->bind(options.bind_endpoint);
     bound.set_value(socket->get(zmq::sockopt::last_endpoint));
   } catch (const zmq::error_t& error) {
@@ -207,7 +209,7 @@ std::string StreamPublisher::Start() {
     const std::lock_guard lock(impl_->mutex);
     impl_->stopping = false;
   }
-  return StartSocketThread(impl_.get());
+  return StartSocketThread(impl_.get(), "stream publisher");
 }
 
 void StreamPublisher::Stop() {
@@ -220,9 +222,7 @@ void StreamPublisher::Stop() {
     impl_->latest_video.reset();
   }
   impl_->wake.notify_all();
-  impl_->context->shutdown();  // a send blocked inside ZeroMQ returns with ETERM
-  impl_->thread.join();
-  impl_->context.reset();
+  StopSocketThread(impl_.get());  // a send blocked inside ZeroMQ returns with ETERM
 }
 
 bool StreamPublisher::Publish(const Message& message) {

@@ -21,8 +21,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "agent/server/curve_server_keys.hpp"
 #include "agent/server/stream_sink.hpp"
 
 namespace kapfix::agent {
@@ -42,6 +44,9 @@ struct StreamPublisherOptions {
   // it: a slow but live station behind a backlog must not be cut off.
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{10000};
+  // CurveZMQ: encrypt every connection and let only the listed stations subscribe. Unset:
+  // plain.
+  std::optional<CurveServerKeys> curve;
 };
 
 class StreamPublisher : public StreamSink {

@@ -35,6 +35,7 @@ struct LinkState {
   QString agent_id;                 // as the agent's messages say; empty = not heard yet
   std::int64_t latency_us = -1;     // [µs] heartbeat round trip; -1 = none measured
   std::uint64_t sequence_gaps = 0;  // [count] stream messages lost on the link
+  QString handshake_failure;        // why the agent would not let this station in; empty = none
 
   bool operator==(const LinkState&) const = default;
 };

@@ -39,6 +39,7 @@ bool ZmqAgentClient::connectToEndpoints(const QString& command_endpoint,
   link_options.stream_endpoint = stream_endpoint.toStdString();
   link_options.link_timeout = options_.link_timeout;
   link_options.heartbeat_interval = options_.heartbeat_interval;
+  link_options.curve = options_.curve;
   auto link = std::make_unique<kapfix::link::AgentLinkClient>(link_options);
 
   const std::uint64_t generation = ++generation_;
@@ -160,6 +161,7 @@ void ZmqAgentClient::refreshLinkState() {
     state.agent_id = QString::fromStdString(status.agent_id);
     state.latency_us = status.latency_us;
     state.sequence_gaps = status.sequence_gaps;
+    state.handshake_failure = QString::fromStdString(status.handshake_failure);
   }
   if (state == state_) return;
   state_ = state;

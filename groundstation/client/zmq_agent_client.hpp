@@ -11,9 +11,11 @@
 #include <QTimer>
 #include <chrono>
 #include <memory>
+#include <optional>
 
 #include "groundstation/client/agent_address.hpp"
 #include "groundstation/client/agent_client.hpp"
+#include "kapfix/link/curve_key_pair.hpp"
 
 namespace kapfix::link {
 class AgentLinkClient;
@@ -26,6 +28,8 @@ struct ZmqAgentClientOptions {
   std::chrono::milliseconds link_timeout{3000};     // [ms] silence before the link is down
   std::chrono::milliseconds heartbeat_interval{1000};
   std::chrono::milliseconds status_poll{250};  // [ms] how often latency is refreshed
+  // CurveZMQ keys (--key, --agent-key); unset: plain, for an agent on this machine.
+  std::optional<kapfix::link::CurveClientKeys> curve;
 };
 
 class ZmqAgentClient final : public AgentClient {

@@ -59,7 +59,9 @@ void LinkStatusBar::showLink(const LinkState& state) {
     link_->setText(tr("LINK UP"));
     colour = QStringLiteral("#1e7b34");
   } else {
-    link_->setText(state.source.isEmpty() ? tr("NOT CONNECTED") : tr("LINK DOWN"));
+    link_->setText(state.source.isEmpty()              ? tr("NOT CONNECTED")
+                   : state.handshake_failure.isEmpty() ? tr("LINK DOWN")
+                                                       : tr("KEY REFUSED"));
     colour = QStringLiteral("#b3261e");
   }
   link_->setStyleSheet(
@@ -70,6 +72,9 @@ void LinkStatusBar::showLink(const LinkState& state) {
   QString source = state.source;
   if (!state.agent_id.isEmpty()) source = state.agent_id + QStringLiteral(" @ ") + source;
   if (state.sequence_gaps > 0) source += tr("  (%1 lost)").arg(state.sequence_gaps);
+  if (!state.up && !state.handshake_failure.isEmpty()) {
+    source += QStringLiteral(": ") + state.handshake_failure;
+  }
   source_->setText(source);
 }
 

@@ -20,6 +20,7 @@
 
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "tools/ctl/handshake_monitor.hpp"
 #include "tools/ctl/wake_signal.hpp"
 
 namespace kapfix::link {
@@ -87,6 +88,7 @@ struct AgentLinkClient::Impl {
   void Expire();
   void SendHeartbeat(zmq::socket_t& dealer);
   void Heard(const std::string& agent_id);
+  void NoteHandshakes();
   void UpdateLink();
   bool LinkUp(const LinkStatus& status) const;
 
@@ -109,6 +111,8 @@ struct AgentLinkClient::Impl {
   std::unique_ptr<zmq::context_t> context;
   std::thread thread;
   std::atomic<std::thread::id> io_thread_id{};
+  std::optional<HandshakeMonitor> command_handshakes;  // I/O thread only
+  std::optional<HandshakeMonitor> stream_handshakes;
 
   // I/O thread only (and Stop(), after joining it).
   std::deque<Outgoing> unsent;
@@ -144,9 +148,21 @@ void AgentLinkClient::Impl::Run(std::promise<void> started) {
       sub->set(zmq::sockopt::subscribe, kHeartbeatTopic);
       for (const auto& [topic, handler] : handlers) sub->set(zmq::sockopt::subscribe, topic);
     }
+    if (options.curve) {
+      for (zmq::socket_t* socket : {&*dealer, &*sub}) {
+        socket->set(zmq::sockopt::curve_serverkey, options.curve->agent_public_key);
+        socket->set(zmq::sockopt::curve_publickey, options.curve->station.public_key);
+        socket->set(zmq::sockopt::curve_secretkey, options.curve->station.secret_key);
+      }
+    }
+    // Before connecting, so that no handshake goes unwatched; destroyed before the sockets.
+    command_handshakes.emplace(*dealer, "command");
+    stream_handshakes.emplace(*sub, "stream");
     dealer->connect(options.command_endpoint);
     sub->connect(options.stream_endpoint);
   } catch (const zmq::error_t& error) {
+    command_handshakes.reset();
+    stream_handshakes.reset();
     started.set_exception(std::make_exception_ptr(
         std::runtime_error("cannot connect to '" + options.command_endpoint + "' / '" +
                            options.stream_endpoint + "': " + error.what())));
@@ -154,6 +170,8 @@ void AgentLinkClient::Impl::Run(std::promise<void> started) {
   }
   started.set_value();
   Loop(*dealer, *sub);
+  command_handshakes.reset();
+  stream_handshakes.reset();
 }
 
 void AgentLinkClient::Impl::Loop(zmq::socket_t& dealer, zmq::socket_t& sub) {
@@ -180,6 +198,7 @@ void AgentLinkClient::Impl::Loop(zmq::socket_t& dealer, zmq::socket_t& sub) {
         queued.pop_front();
       }
     }
+    NoteHandshakes();
     ReceiveReplies(dealer);
     ReceiveStreams(sub);
     SendOutgoing(dealer);
@@ -190,6 +209,16 @@ void AgentLinkClient::Impl::Loop(zmq::socket_t& dealer, zmq::socket_t& sub) {
     }
     UpdateLink();
   }
+}
+
+void AgentLinkClient::Impl::NoteHandshakes() {
+  command_handshakes->Poll();
+  stream_handshakes->Poll();
+  const std::string& failure = !command_handshakes->failure().empty()
+                                   ? command_handshakes->failure()
+                                   : stream_handshakes->failure();
+  const std::lock_guard lock(status_mutex);
+  status.handshake_failure = failure;
 }
 
 Clock::time_point AgentLinkClient::Impl::NextWake(Clock::time_point next_heartbeat) const {

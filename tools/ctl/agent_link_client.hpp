@@ -26,6 +26,7 @@
 #include <string>
 #include <string_view>
 
+#include "kapfix/link/curve_key_pair.hpp"
 #include "kapfix/v1/command.pb.h"
 
 namespace kapfix::link {
@@ -41,6 +42,8 @@ struct AgentLinkClientOptions {
   std::chrono::milliseconds link_timeout{3000};
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{3000};
+  // Unset: plain ZMTP, which an agent with keys refuses.
+  std::optional<CurveClientKeys> curve;
 };
 
 struct LinkStatus {
@@ -54,6 +57,9 @@ struct LinkStatus {
   // what it hands to ZeroMQ, so a gap is a loss on the link, including what was published
   // while this station was disconnected).
   std::uint64_t sequence_gaps = 0;
+  // Why the agent did not let this station in (a refused key, a wrong agent key, one end
+  // without keys); empty while the last handshake succeeded or none failed.
+  std::string handshake_failure;
 };
 
 class AgentLinkClient {

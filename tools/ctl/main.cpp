@@ -17,6 +17,7 @@
 #include <string>
 #include <thread>
 
+#include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/photo.pb.h"
 #include "kapfix/v1/slices.pb.h"
@@ -39,8 +40,9 @@ constexpr const char* kExitCodes =
     "Exit codes:\n"
     "  0  ok\n"
     "  1  the agent refused the command (its reason is printed on stderr)\n"
-    "  2  bad arguments (unknown key, unreadable value, missing folder)\n"
-    "  3  no answer within --timeout: the link is down or no agent listens\n";
+    "  2  bad arguments (unknown key, unreadable value, missing folder, bad key file)\n"
+    "  3  no answer within --timeout: the link is down, no agent listens, or it refused\n"
+    "     this station's CurveZMQ key (the reason is printed when ZeroMQ tells it)\n";
 
 struct LinkArguments {
   std::string host = "localhost";
@@ -48,6 +50,9 @@ struct LinkArguments {
   int stream_port = 5556;
   int timeout_ms = 3000;
   std::string agent_id;
+  std::string key_file;        // this station's secret key file (kapfix-keygen)
+  std::string agent_key_file;  // the agent's public key file
+  std::optional<kapfix::link::CurveClientKeys> curve;  // read from the two files
 
   std::chrono::milliseconds timeout() const { return std::chrono::milliseconds(timeout_ms); }
   std::string CommandEndpoint() const {
@@ -67,6 +72,7 @@ std::unique_ptr<AgentLinkClient> MakeClient(const LinkArguments& link) {
   options.command_endpoint = link.CommandEndpoint();
   options.stream_endpoint = link.StreamEndpoint();
   options.agent_id = link.agent_id;
+  options.curve = link.curve;
   // Link loss is declared after --timeout of silence. Our own heartbeats, echoed by the
   // agent, come three times per timeout so that a short --timeout does not mistake the
   // agent's slower stream heartbeats (1 s) for a lost link.
@@ -81,8 +87,10 @@ int Send(AgentLinkClient& client, const LinkArguments& link, Command command,
          kapfix::v1::Reply* reply = nullptr) {
   const auto answer = client.Request(std::move(command), link.timeout());
   if (!answer) {
+    const std::string refused = client.Status().handshake_failure;
     Error("no answer from " + link.CommandEndpoint() + " within " +
-          std::to_string(link.timeout_ms) + " ms (link down or no agent)");
+          std::to_string(link.timeout_ms) + " ms (" +
+          (refused.empty() ? std::string("link down or no agent") : refused) + ")");
     return kNoAnswer;
   }
   if (!answer->ok()) {
@@ -106,9 +114,11 @@ bool LinkAlive(const AgentLinkClient& client, const LinkArguments& link, Clock::
   return Clock::now() - since < link.timeout() && client.Status().last_heard_us == 0;
 }
 
-int LinkDown(const LinkArguments& link) {
+int LinkDown(const AgentLinkClient& client, const LinkArguments& link) {
+  const std::string refused = client.Status().handshake_failure;
   Error("no message from the agent at " + link.StreamEndpoint() + " within " +
-        std::to_string(link.timeout_ms) + " ms (link down or no agent)");
+        std::to_string(link.timeout_ms) + " ms (" +
+        (refused.empty() ? std::string("link down or no agent") : refused) + ")");
   return kNoAnswer;
 }
 
@@ -150,7 +160,7 @@ int RunWatch(const LinkArguments& link, int count) {
   client->Start();
   const auto start = Clock::now();
   while (!g_interrupted.load() && (count <= 0 || printed.load() < count)) {
-    if (!LinkAlive(*client, link, start)) return LinkDown(link);
+    if (!LinkAlive(*client, link, start)) return LinkDown(*client, link);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return kOk;
@@ -220,7 +230,7 @@ int RunSsp(const LinkArguments& link, bool wait, unsigned frames) {
     reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
   });
   client->Start();
-  if (!StreamsReady(*client, link)) return LinkDown(link);
+  if (!StreamsReady(*client, link)) return LinkDown(*client, link);
   reports.Arm();
   const int code = Send(*client, link, std::move(command));
   if (code != kOk) return code;
@@ -230,7 +240,7 @@ int RunSsp(const LinkArguments& link, bool wait, unsigned frames) {
       PrintLine(kapfix::ctl::SliceReportText(*report));
       if (report->finished()) return kOk;
     } else if (!client->Status().up) {
-      return LinkDown(link);
+      return LinkDown(*client, link);
     }
   }
   return kOk;
@@ -255,7 +265,7 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
     }
   });
   client->Start();
-  if (!StreamsReady(*client, link)) return LinkDown(link);
+  if (!StreamsReady(*client, link)) return LinkDown(*client, link);
   photos.Arm();
   const int code = Send(*client, link, std::move(command));
   if (code != kOk) return code;
@@ -269,7 +279,7 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
       }
       return kOk;
     }
-    if (!client->Status().up) return LinkDown(link);
+    if (!client->Status().up) return LinkDown(*client, link);
   }
   return kOk;
 }
@@ -312,7 +322,7 @@ int RunRecord(const LinkArguments& link, const std::string& file, int count, dou
       }
     }
     if (!LinkAlive(*client, link, start)) {
-      code = LinkDown(link);
+      code = LinkDown(*client, link);
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -342,6 +352,16 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1, 3'600'000));
   app.add_option("--agent-id", link.agent_id,
                  "address only the agent with this id (default: whichever listens)");
+  auto* key_option =
+      app.add_option("--key", link.key_file,
+                     "this station's secret key file (kapfix-keygen NAME writes NAME.key)")
+          ->check(CLI::ExistingFile);
+  auto* agent_key_option =
+      app.add_option("--agent-key", link.agent_key_file,
+                     "the agent's public key file (its .pub): with --key, the link uses CurveZMQ")
+          ->check(CLI::ExistingFile);
+  key_option->needs(agent_key_option);
+  agent_key_option->needs(key_option);
 
   bool json = false;
   auto* status = app.add_subcommand("status", "print the agent's mode and settings");
@@ -399,6 +419,17 @@ int Main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return code == 0 ? kOk : kBadArguments;
+  }
+  if (!link.key_file.empty()) {
+    std::string why;
+    const auto station = kapfix::link::ReadSecretKeyFile(link.key_file, &why);
+    const auto agent =
+        station ? kapfix::link::ReadPublicKeyFile(link.agent_key_file, &why) : std::nullopt;
+    if (!agent) {
+      Error(why);
+      return kBadArguments;
+    }
+    link.curve = kapfix::link::CurveClientKeys{*station, *agent};
   }
 
   std::signal(SIGINT, OnInterrupt);

@@ -5,12 +5,12 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "tests/agent/support/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
 namespace {
 
-using testing::TempDir;
+using kapfix::testing::TempDir;
 
 kapfix::v1::CalibrationReport Report() {
   kapfix::v1::CalibrationReport report;

@@ -8,13 +8,13 @@
 #include <fstream>
 
 #include "tests/agent/support/recording_stream_sink.hpp"
-#include "tests/agent/support/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
 namespace {
 
 using kapfix::agent::testing::RecordingStreamSink;
-using kapfix::agent::testing::TempDir;
+using kapfix::testing::TempDir;
 
 // The executor over real parts, all publishing into one recording sink.
 struct Rig {

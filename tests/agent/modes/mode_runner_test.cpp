@@ -14,14 +14,14 @@
 #include <vector>
 
 #include "common/selection/slice_geometry.hpp"
-#include "tests/agent/support/temp_dir.hpp"
 #include "tests/common/selection/swing_frames.hpp"
+#include "tests/support/temp_dir.hpp"
 #include "tests/support/test_images.hpp"
 
 namespace kapfix::agent {
 namespace {
 
-using kapfix::agent::testing::TempDir;
+using kapfix::testing::TempDir;
 
 const cv::Size kFrame(200, 140);  // small: PSS can try 50 and 100 px but not 150
 constexpr int kSlices = 5;

@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "tests/agent/support/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
 namespace {
 
-using kapfix::agent::testing::TempDir;
+using kapfix::testing::TempDir;
 
 cv::Mat NoisePhoto(cv::Size size) {
   cv::Mat image(size, CV_8UC3);

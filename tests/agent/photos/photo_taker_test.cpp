@@ -11,14 +11,14 @@
 #include <vector>
 
 #include "tests/agent/support/recording_stream_sink.hpp"
-#include "tests/agent/support/temp_dir.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
 namespace {
 
 using kapfix::agent::testing::RecordingStreamSink;
-using kapfix::agent::testing::TempDir;
 using kapfix::agent::testing::WaitUntil;
+using kapfix::testing::TempDir;
 
 constexpr std::int64_t kFramePeriodUs = 100'000;  // a 10 fps camera
 

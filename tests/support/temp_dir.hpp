@@ -7,7 +7,7 @@
 #include <string>
 #include <system_error>
 
-namespace kapfix::agent::testing {
+namespace kapfix::testing {
 
 // A private folder made by mkdtemp, removed with its contents at the end of the test.
 class TempDir {
@@ -31,4 +31,4 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-}  // namespace kapfix::agent::testing
+}  // namespace kapfix::testing
