@@ -3,6 +3,8 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QSettings>
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -12,6 +14,8 @@
 #include "groundstation/client/switchable_agent_client.hpp"
 #include "groundstation/client/zmq_agent_client.hpp"
 #include "groundstation/main_window.hpp"
+#include "groundstation/photos/photo_store.hpp"
+#include "groundstation/photos/photos_panel.hpp"
 #include "groundstation/recording/recording_controls.hpp"
 #include "groundstation/snapshot/ssp_screenshot.hpp"
 #include "groundstation/status/connection_bar.hpp"
@@ -21,6 +25,7 @@
 namespace {
 
 constexpr double kDefaultFontPt = 11.5;  // [pt] readable at arm's length on a laptop
+constexpr std::int64_t kResyncHorizonUs = 3600LL * 1'000'000;  // [µs] one flight, at most
 
 }  // namespace
 
@@ -94,11 +99,16 @@ int main(int argc, char** argv) {
   using namespace kapfix::station;
   ZmqAgentClient live(client_options);
   SwitchableAgentClient views(live);
-  const LinkResync resync(live, kapfix::v1::NowMicros());
   // The window's toolbar takes ownership of these two.
   auto* connection = new ConnectionBar(live);
   auto* recording = new RecordingControls(views, live);
   MainWindow window({&views, connection, recording});
+  // A restarted station catches up from the newest photo it already holds, so photos the agent
+  // took while no station was running arrive too; not from further back than kResyncHorizon
+  // (an old folder holds other flights, not this one's).
+  const std::int64_t start_us = kapfix::v1::NowMicros();
+  const std::int64_t newest_held_us = PhotoStore::newestCaptureTimeUs(window.photos().folder());
+  const LinkResync resync(live, std::max(newest_held_us + 1, start_us - kResyncHorizonUs));
 
   AgentAddress address = connection->address();
   if (parser.isSet(agent)) address.host = parser.value(agent);

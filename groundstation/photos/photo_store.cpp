@@ -3,7 +3,9 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <QDir>
+#include <QFile>
 #include <QSaveFile>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +13,25 @@ namespace kapfix::station {
 
 QString PhotoStore::sidecarPathFor(const QString& image_path) {
   return image_path + QStringLiteral(".json");
+}
+
+std::int64_t PhotoStore::newestCaptureTimeUs(const QString& folder) {
+  std::int64_t newest = 0;
+  const QDir dir(folder);
+  for (const QString& name : dir.entryList({QStringLiteral("*.json")}, QDir::Files)) {
+    QFile file(dir.filePath(name));
+    if (!file.open(QIODevice::ReadOnly)) continue;
+    const QByteArray json = file.readAll();
+    kapfix::v1::PhotoMetadata metadata;
+    // A sidecar that does not parse (someone else's file) is skipped, not fatal.
+    if (!google::protobuf::util::JsonStringToMessage(
+             std::string(json.constData(), static_cast<std::size_t>(json.size())), &metadata)
+             .ok()) {
+      continue;
+    }
+    newest = std::max(newest, metadata.capture_time_us());
+  }
+  return newest;
 }
 
 std::optional<SavedPhoto> PhotoStore::add(const kapfix::v1::Photo& chunk) {

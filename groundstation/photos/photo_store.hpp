@@ -6,6 +6,7 @@
 // "<file_name>.json" (PhotoMetadata as JSON, the same fields as the agent's own sidecar).
 
 #include <QString>
+#include <cstdint>
 #include <optional>
 
 #include "kapfix/v1/photo.pb.h"
@@ -31,6 +32,9 @@ class PhotoStore {
   std::optional<SavedPhoto> add(const kapfix::v1::Photo& chunk);
 
   static QString sidecarPathFor(const QString& image_path);
+  // [µs since epoch] the newest capture time among the sidecars in `folder`; 0 when none can
+  // be read. A restarted station asks the agent for the photos taken after it.
+  static std::int64_t newestCaptureTimeUs(const QString& folder);
 
  private:
   QString folder_;

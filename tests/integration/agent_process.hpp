@@ -23,6 +23,7 @@ class AgentProcess {
   int Stop();
   bool running();  // reaps it when it has exited
 
+  pid_t pid() const { return pid_; }  // -1 once reaped
   int command_port() const { return command_port_; }
   int stream_port() const { return stream_port_; }
   const std::filesystem::path& folder() const { return folder_; }

@@ -24,6 +24,16 @@ TEST(LinkStatusBar, ShowsLinkUpWithLatencyAndDownWhenLost) {
   EXPECT_EQ(bar.latencyText(), QStringLiteral("— ms"));
 }
 
+TEST(LinkStatusBar, RefusedKeyIsNamedAsSuch) {
+  FakeAgentClient client;
+  LinkStatusBar bar(client);
+  LinkState state;
+  state.source = QStringLiteral("tcp://kite:5555");
+  state.handshake_failure = QStringLiteral("the agent refused this station's key");
+  client.setLink(state);
+  EXPECT_EQ(bar.linkText(), QStringLiteral("KEY REFUSED"));
+}
+
 TEST(LinkStatusBar, ShowsTheAgentsFpsAndModeFromTelemetry) {
   FakeAgentClient client;
   LinkStatusBar bar(client);
