@@ -149,8 +149,10 @@ int Main(int argc, char** argv) {
 
   if (!options.keep_telemetry) {
     spdlog::info(
-        "processed {} frames in {:.1f} s ({} dropped, {} watchdog stalls, {} servo errors)",
-        stats.processed, stats.wall_s, stats.dropped, stats.watchdog_stalls, stats.servo_errors);
+        "processed {} frames in {:.1f} s ({} dropped, {} watchdog stalls, {} servo errors, {} "
+        "servo driver outages, {} camera reconnects)",
+        stats.processed, stats.wall_s, stats.dropped, stats.watchdog_stalls, stats.servo_errors,
+        stats.servo_outages, stats.camera_reconnects);
     if (!stats.error.empty()) return Fail(stats.error, 1);
     return 0;
   }
@@ -172,6 +174,8 @@ int Main(int argc, char** argv) {
       {"dropped_frames", stats.dropped},
       {"watchdog_stalls", stats.watchdog_stalls},
       {"servo_errors", stats.servo_errors},
+      {"servo_outages", stats.servo_outages},
+      {"camera_reconnects", stats.camera_reconnects},
   };
   std::cout << summary.dump(2) << std::endl;
   if (!report_dir.empty()) {

@@ -25,7 +25,9 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
       servos_(servos),
       processor_(processor),
       observers_(std::move(observers)),
-      options_(std::move(options)) {}
+      options_(std::move(options)),
+      commander_(servos_, servo_mutex_,
+                 ServoCommanderOptions{options_.retry_initial_ms, options_.retry_max_ms}) {}
 
 PipelineStats Pipeline::Run() {
   PipelineStats stats;
@@ -151,16 +153,11 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     const ServoTargets current = SeenThrough(frame->index);
     const FrameOutcome outcome = processor_.Process(*frame, current, dt_s);
     const FixationLoop::Step& step = outcome.step;
-    ServoTargets angles;
-    {
-      std::lock_guard lock(servo_mutex_);
-      std::string error;
-      if (!servos_.SetAngle(ServoAxis::kPan, step.targets.pan_deg, &error)) ++stats->servo_errors;
-      if (!servos_.SetAngle(ServoAxis::kTilt, step.targets.tilt_deg, &error)) {
-        ++stats->servo_errors;
-      }
-      angles = {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
-    }
+    const ServoTargets angles = commander_.Command(step.targets);
+    const ServoCommander::Counters servo = commander_.counters();
+    stats->servo_errors = servo.errors;
+    stats->servo_outages = servo.outages;
+    stats->servo_recoveries = servo.recoveries;
     commanded_.emplace_back(frame->index, angles);
     if (commanded_.size() > kCommandHistory) commanded_.pop_front();
 

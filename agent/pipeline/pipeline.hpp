@@ -13,6 +13,7 @@
 #include "agent/capture/frame_source.hpp"
 #include "agent/pipeline/frame_processor.hpp"
 #include "agent/pipeline/latest_frame_slot.hpp"
+#include "agent/pipeline/servo_commander.hpp"
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/fixation/fixation_loop.hpp"
@@ -36,6 +37,7 @@ struct PipelineOptions {
   // the outage as a stall), Open is retried after retry_initial_ms, doubling up to
   // retry_max_ms, until it succeeds or Stop(); then the flight resumes. Off: a lost camera
   // ends the run.
+  // The same back-off reopens a failed servo driver (ServoCommander); that one always retries.
   bool reconnect_camera = true;
   int retry_initial_ms = 100;  // [ms]
   int retry_max_ms = 5000;     // [ms]
@@ -49,6 +51,8 @@ struct PipelineStats {
   std::uint64_t grab_errors = 0;        // failed Grabs
   std::uint64_t camera_reconnects = 0;  // outages the camera came back from
   std::uint64_t servo_errors = 0;       // refused or failed servo commands
+  std::uint64_t servo_outages = 0;      // servo driver failures
+  std::uint64_t servo_recoveries = 0;   // outages the servo driver came back from
   std::uint64_t watchdog_stalls = 0;
   double wall_s = 0;  // [s] from start to the last step
   std::string error;  // why the run ended early, if it did
@@ -89,7 +93,8 @@ class Pipeline {
   std::atomic<bool> stop_{false};
   std::mutex camera_mutex_;
   std::vector<std::function<void(FrameSource&)>> camera_changes_;
-  std::mutex servo_mutex_;  // LimitedServoDriver is not thread-safe: control vs watchdog
+  std::mutex servo_mutex_;    // LimitedServoDriver is not thread-safe: control vs watchdog
+  ServoCommander commander_;  // control thread only
   std::deque<std::pair<std::uint64_t, ServoTargets>> commanded_;  // control thread only
 };
 

@@ -29,6 +29,9 @@ class FakeServoDriver : public ServoDriver {
   void FailOpen(bool fail) { fail_open_ = fail; }
   // The next `count` SetAngle/Park calls fail with a reason and move nothing.
   void FailNextCommands(int count) { fail_commands_ = count; }
+  // As if the device went away (a USB serial adapter unplugged): every command fails until
+  // the next successful Open.
+  void Disconnect() { open_ = false; }
 
   const std::vector<FakeServoCommand>& commands() const { return commands_; }
   double angle(ServoAxis axis) const;  // [deg] last successful command

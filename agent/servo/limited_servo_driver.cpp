@@ -45,6 +45,18 @@ bool LimitedServoDriver::Open(std::string* error) {
   return true;
 }
 
+bool LimitedServoDriver::Reopen(std::string* error) {
+  open_ = false;
+  if (!backend_->Open(error)) return false;
+  for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
+    AxisState& s = State(axis);
+    if (!backend_->SetAngle(axis, s.angle_deg, error)) return false;
+    s.commanded_at_us = clock_();
+  }
+  open_ = true;
+  return true;
+}
+
 bool LimitedServoDriver::Command(ServoAxis axis, double target_deg, std::string* error) {
   if (!open_) {
     if (error) *error = Describe() + ": not open";

@@ -38,6 +38,11 @@ class LimitedServoDriver : public ServoDriver {
                      MonotonicClockUs clock = SteadyClockNowUs);
 
   bool Open(std::string* error) override;
+  // After the backend failed: opens it again and sends each axis the angle last accepted,
+  // unlimited. Where the servos stand after a failure is unknown (a Maestro may have gone to
+  // its hold position); the last angle is where the control loop believes them to be, so
+  // fixation resumes without a jump in its model.
+  bool Reopen(std::string* error);
   bool SetAngle(ServoAxis axis, double deg, std::string* error) override;
   bool Park(std::string* error) override;
   std::string Describe() const override;

@@ -185,6 +185,27 @@ TEST(PipelineTest, ALongCameraOutageIsNotAControlStall) {
   EXPECT_EQ(stats.camera_reconnects, 0u);
 }
 
+TEST(PipelineTest, AFailedServoDriverIsReopenedAndTheFlightResumes) {
+  Rig rig;
+  ScriptedProcessor processor;
+  PipelineOptions options;
+  options.frames = 40;
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  options.retry_max_ms = 2;
+  processor.per_frame = std::chrono::milliseconds(1);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  rig.fake->Disconnect();  // unplugged before the first frame
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 40U) << "the control loop went on through the outage";
+  EXPECT_EQ(stats.servo_outages, 1U);
+  EXPECT_EQ(stats.servo_recoveries, 1U);
+  // Fixation resumed: the last frames' targets reached the servos.
+  const auto records = rig.telemetry.records();
+  ASSERT_FALSE(records.empty());
+  EXPECT_DOUBLE_EQ(records.back().angle_pan_deg, processor.pan_deg);
+}
+
 TEST(PipelineTest, WithoutReconnectionALostCameraEndsTheRunWithItsReason) {
   Rig rig;
   ScriptedProcessor processor;

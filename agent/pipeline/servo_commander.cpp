@@ -1,0 +1,62 @@
+#include "agent/pipeline/servo_commander.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace kapfix::agent {
+
+ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
+                               ServoCommanderOptions options, MonotonicClockUs clock)
+    : servos_(servos), mutex_(mutex), options_(options), clock_(std::move(clock)) {}
+
+ServoTargets ServoCommander::Command(const ServoTargets& targets) {
+  const std::lock_guard lock(mutex_);
+  const std::int64_t now_us = clock_();
+  if (out_) RetryIfDue(now_us);
+  if (!out_) {
+    std::string error;
+    for (const auto& [axis, deg] : {std::pair{ServoAxis::kPan, targets.pan_deg},
+                                    std::pair{ServoAxis::kTilt, targets.tilt_deg}}) {
+      if (servos_.SetAngle(axis, deg, &error)) continue;
+      ++counters_.errors;
+      // LimitedServoDriver refuses a non-finite angle itself and says why; the driver is fine.
+      if (std::isfinite(deg)) {
+        Fail(error, now_us);
+        break;
+      }
+    }
+  }
+  return {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
+}
+
+void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
+  out_ = true;
+  out_since_us_ = now_us;
+  wait_ms_ = options_.retry_initial_ms;
+  next_retry_us_ = now_us + std::int64_t{wait_ms_} * 1000;
+  attempts_ = 0;
+  ++counters_.outages;
+  spdlog::error("servo driver failed: {}; the servos hold, reopening it in {} ms", error, wait_ms_);
+}
+
+void ServoCommander::RetryIfDue(std::int64_t now_us) {
+  if (now_us < next_retry_us_) return;
+  ++attempts_;
+  std::string error;
+  if (servos_.Reopen(&error)) {
+    out_ = false;
+    ++counters_.recoveries;
+    spdlog::info("servo driver back after {:.1f} s ({} attempts): {}",
+                 static_cast<double>(now_us - out_since_us_) * 1e-6, attempts_, servos_.Describe());
+    return;
+  }
+  wait_ms_ = std::min(2 * wait_ms_, options_.retry_max_ms);
+  next_retry_us_ = now_us + std::int64_t{wait_ms_} * 1000;
+  spdlog::warn("servo driver reopen attempt {} failed: {}; next in {} ms", attempts_, error,
+               wait_ms_);
+}
+
+}  // namespace kapfix::agent
