@@ -12,8 +12,8 @@
 
 namespace kapfix::fuzz {
 
-// The topic byte of a stream input for the i-th of kapfix::v1::Topics(); any byte past the
-// last topic stands for a topic the station does not know.
+// The first byte of a stream input that selects `topic`: its index in kapfix::v1::Topics().
+// A byte past the last topic (what an unknown `topic` gets) stands for an unknown topic.
 std::uint8_t TopicByte(std::string_view topic);
 
 // A station receiving one message on the agent's streams: the first byte picks the topic
