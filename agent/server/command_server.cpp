@@ -12,21 +12,19 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "agent/server/command_intake.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 
 namespace kapfix::agent {
 namespace {
 
-using kapfix::v1::Command;
-using kapfix::v1::ErrorCode;
 using kapfix::v1::Reply;
 
 // A request has at most routing id, delimiter, topic and message; anything longer is
 // malformed, and its extra frames are read and discarded rather than kept in memory.
 constexpr std::size_t kMaxFramesKept = 4;
 
-constexpr std::string_view kCommandTopic = "command";
 constexpr std::string_view kHeartbeatTopic = "heartbeat";
 constexpr std::string_view kReplyTopic = "reply";
 
@@ -50,22 +48,20 @@ struct Envelope {
 
 struct CommandServer::Impl {
   Impl(AgentControl& agent, CommandServerOptions opts)
-      : control(agent), options(std::move(opts)), validator(options.limits) {}
+      : options(std::move(opts)), intake(agent, options.agent_id, options.limits) {}
 
   void Run(std::promise<std::string> bound);
   void Serve(zmq::socket_t& socket);
   void Handle(zmq::socket_t& socket, const Request& request);
   void HandleCommand(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
   void HandleHeartbeat(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
-  Reply Check(const Request& request, const Envelope& envelope, Command& command);
   void SendReply(zmq::socket_t& socket, const Request& request, const Envelope& envelope,
                  Reply reply, std::uint64_t command_sequence);
   void Send(zmq::socket_t& socket, const Request& request, bool delimiter,
             std::optional<std::string_view> topic, const std::string& payload);
 
-  AgentControl& control;
   const CommandServerOptions options;
-  const CommandValidator validator;
+  CommandIntake intake;  // owned by the server thread
 
   std::unique_ptr<zmq::context_t> context;
   std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
@@ -77,9 +73,9 @@ struct CommandServer::Impl {
   std::atomic<std::uint64_t> heartbeats_ignored{0};
   std::atomic<std::int64_t> last_station_heard_us{0};
 
-  // Owned by the server thread. Keyed by routing id: ROUTER gives each connection its own,
-  // so a station that reconnects starts a new numbering, and no station can pose as another.
-  kapfix::v1::SequenceGuard command_guard;
+  // Owned by the server thread. Keyed by routing id (as the intake's command sequences are):
+  // ROUTER gives each connection its own, so a station that reconnects starts a new
+  // numbering, and no station can pose as another.
   kapfix::v1::SequenceGuard heartbeat_guard;
   std::uint64_t reply_sequence = 0;
   std::uint64_t heartbeat_sequence = 0;
@@ -164,70 +160,11 @@ void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) 
 
 void CommandServer::Impl::HandleCommand(zmq::socket_t& socket, const Request& request,
                                         const Envelope& envelope) {
-  Command command;
-  Reply reply = Check(request, envelope, command);
-  if (reply.error() == kapfix::v1::ERROR_CODE_UNSPECIFIED) {
-    try {
-      reply = control.Execute(command);
-      if (command.has_request_state() && reply.ok() && !reply.has_state()) {
-        *reply.mutable_state() = control.State();
-      }
-    } catch (const std::exception& error) {
-      reply = Reply();
-      reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
-      reply.set_reason(std::string("the agent failed to execute the command: ") + error.what());
-    }
-  }
-  SendReply(socket, request, envelope, std::move(reply), command.header().sequence());
-}
-
-// Everything before Execute: decoding, addressing, replay, ranges. An error reply, or a reply
-// with error UNSPECIFIED when the command may go on; `command` holds what could be read.
-Reply CommandServer::Impl::Check(const Request& request, const Envelope& envelope,
-                                 Command& command) {
-  Reply reply;
-  std::string error;
-  ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
-  if (!kapfix::v1::DecodeEnvelope(envelope.topic.value_or(std::string(kCommandTopic)),
-                                  envelope.payload, &command, kapfix::v1::kMaxCommandBytes, &error,
-                                  &code)) {
-    if (code == kapfix::v1::ERROR_CODE_WRONG_VERSION) {
-      // The bytes parse; read them anyway, only so the reply can name the command's sequence
-      // and the station can match it to its request.
-      Command readable;
-      if (readable.ParseFromArray(envelope.payload.data(),
-                                  static_cast<int>(envelope.payload.size()))) {
-        *command.mutable_header() = readable.header();
-      }
-    }
-    reply.set_error(code);
-    reply.set_reason(error);
-    return reply;
-  }
-  const std::string& addressed = command.header().agent_id();
-  if (!addressed.empty() && addressed != options.agent_id) {
-    reply.set_error(kapfix::v1::ERROR_CODE_UNAUTHORIZED);
-    // Echoed only when short: cutting it could split a UTF-8 character, and a reply with
-    // invalid UTF-8 in a string would not parse at the station.
-    constexpr std::size_t kMaxEchoed = 64;
-    reply.set_reason("command addressed to agent " +
-                     (addressed.size() <= kMaxEchoed ? "'" + addressed + "'" : "(a long id)") +
-                     ", this is agent '" + options.agent_id + "'");
-    return reply;
-  }
-  if (!command_guard.Accept(View(request.frames[0]), command.header().sequence(), &error)) {
-    reply.set_error(kapfix::v1::ERROR_CODE_STALE_SEQUENCE);
-    reply.set_reason(error);
-    return reply;
-  }
-  last_station_heard_us.store(request.received_us);
-  try {
-    return validator.Validate(command, control.State());
-  } catch (const std::exception& failure) {
-    reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
-    reply.set_reason(std::string("the agent could not report its state: ") + failure.what());
-    return reply;
-  }
+  // The routing id identifies the station: sequence numbers are checked per connection.
+  CommandIntake::Outcome outcome =
+      intake.Answer(View(request.frames[0]), envelope.topic, envelope.payload);
+  if (outcome.station_heard) last_station_heard_us.store(request.received_us);
+  SendReply(socket, request, envelope, std::move(outcome.reply), outcome.command_sequence);
 }
 
 void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& request,

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <utility>
 
-#include "common/search/search_strategy.hpp"
+#include "common/search/search_strategy_names.hpp"
 
 namespace kapfix::agent {
 namespace {

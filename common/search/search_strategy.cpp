@@ -37,11 +37,6 @@ bool SearchOptions::IsValid(std::string* error) const {
   return true;
 }
 
-const std::vector<std::string>& SearchStrategyNames() {
-  static const std::vector<std::string> names = {"all", "h23", "h21", "h19", "h17", "h15", "pyr"};
-  return names;
-}
-
 std::unique_ptr<SearchStrategy> MakeSearchStrategy(std::string_view name, std::string* error) {
   if (name == "all") return std::make_unique<ExhaustiveSearch>();
   if (name == "pyr") return std::make_unique<PyramidSearch>();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/matching/reference_patch.hpp"
+#include "common/search/search_strategy_names.hpp"
 
 namespace kapfix {
 
@@ -56,9 +57,8 @@ class SearchStrategy {
                               const SearchOptions& options) const = 0;
 };
 
-// "all", "h23", "h21", "h19", "h17", "h15" or "pyr"; nullptr and a reason otherwise.
+// "all", "h23", "h21", "h19", "h17", "h15" or "pyr" (SearchStrategyNames()); nullptr and a
+// reason otherwise.
 std::unique_ptr<SearchStrategy> MakeSearchStrategy(std::string_view name, std::string* error);
-// The names MakeSearchStrategy accepts, in the order above.
-const std::vector<std::string>& SearchStrategyNames();
 
 }  // namespace kapfix

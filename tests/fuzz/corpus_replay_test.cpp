@@ -1,0 +1,139 @@
+// The fuzzers' kept corpus (tests/fuzz/corpus) run through the same entry points as the
+// fuzzers, in the normal build: any input that once broke an invariant and was fixed stays
+// fixed, and the seeds prove the entry points still accept what is valid and refuse what is
+// not. An input breaking an invariant aborts the test.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "kapfix/v1/command.pb.h"
+#include "kapfix/v1/envelope_codec.hpp"
+#include "tests/fuzz/fuzz_entry_points.hpp"
+
+namespace kapfix::fuzz {
+namespace {
+
+struct CorpusFile {
+  std::string name;
+  std::vector<std::uint8_t> bytes;
+};
+
+std::vector<CorpusFile> ReadCorpus(const std::string& fuzzer) {
+  const std::filesystem::path folder = std::filesystem::path(KAPFIX_FUZZ_CORPUS_DIR) / fuzzer;
+  std::vector<CorpusFile> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    files.push_back({entry.path().filename().string(),
+                     std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {})});
+  }
+  std::sort(files.begin(), files.end(),
+            [](const CorpusFile& a, const CorpusFile& b) { return a.name < b.name; });
+  return files;
+}
+
+bool StartsWith(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
+
+std::vector<CorpusFile> Named(const std::vector<CorpusFile>& files, const std::string& prefix) {
+  std::vector<CorpusFile> named;
+  std::copy_if(files.begin(), files.end(), std::back_inserter(named),
+               [&](const CorpusFile& file) { return StartsWith(file.name, prefix); });
+  return named;
+}
+
+bool Contains(const std::vector<CorpusFile>& files, const std::string& name) {
+  return std::any_of(files.begin(), files.end(),
+                     [&](const CorpusFile& file) { return file.name == name; });
+}
+
+// Seeds written by seed_corpus_writer: at least so many valid and bad ones per fuzzer, so that
+// an emptied or misplaced corpus fails rather than replays nothing.
+constexpr std::size_t kMinValidSeeds = 10;
+constexpr std::size_t kMinBadSeeds = 6;
+
+class StreamCorpusReplayTest : public ::testing::Test {
+ protected:
+  const std::vector<CorpusFile> corpus_ = ReadCorpus("stream_message_decoding_fuzzer");
+};
+
+TEST_F(StreamCorpusReplayTest, HasAValidSeedForEveryTopic) {
+  for (const std::string& topic : kapfix::v1::Topics()) {
+    EXPECT_TRUE(Contains(corpus_, "valid_" + topic)) << "no seed valid_" << topic;
+  }
+}
+
+TEST_F(StreamCorpusReplayTest, EveryFileReplaysWithoutBreakingAnInvariant) {
+  ASSERT_GE(corpus_.size(), kMinValidSeeds + kMinBadSeeds);
+  for (const CorpusFile& file : corpus_) {
+    SCOPED_TRACE(file.name);
+    (void)FuzzStreamMessage(file.bytes.data(), file.bytes.size());
+  }
+}
+
+TEST_F(StreamCorpusReplayTest, ValidSeedsAreDecoded) {
+  const std::vector<CorpusFile> valid = Named(corpus_, "valid_");
+  ASSERT_GE(valid.size(), kMinValidSeeds);
+  for (const CorpusFile& file : valid) {
+    EXPECT_TRUE(FuzzStreamMessage(file.bytes.data(), file.bytes.size())) << file.name;
+  }
+}
+
+TEST_F(StreamCorpusReplayTest, BadSeedsAreRefused) {
+  const std::vector<CorpusFile> bad = Named(corpus_, "bad_");
+  ASSERT_GE(bad.size(), kMinBadSeeds);
+  for (const CorpusFile& file : bad) {
+    EXPECT_FALSE(FuzzStreamMessage(file.bytes.data(), file.bytes.size())) << file.name;
+  }
+}
+
+class CommandCorpusReplayTest : public ::testing::Test {
+ protected:
+  const std::vector<CorpusFile> corpus_ = ReadCorpus("command_handling_fuzzer");
+};
+
+TEST_F(CommandCorpusReplayTest, HasAValidSeedForEveryCommandKind) {
+  const auto* kinds = kapfix::v1::Command::descriptor()->FindOneofByName("command");
+  ASSERT_NE(kinds, nullptr);
+  for (int i = 0; i < kinds->field_count(); ++i) {
+    const std::string& kind = kinds->field(i)->name();
+    EXPECT_TRUE(Contains(corpus_, "valid_" + kind)) << "no seed valid_" << kind;
+  }
+}
+
+TEST_F(CommandCorpusReplayTest, EveryFileReplaysWithoutBreakingAnInvariant) {
+  ASSERT_GE(corpus_.size(), kMinValidSeeds + kMinBadSeeds);
+  for (const CorpusFile& file : corpus_) {
+    SCOPED_TRACE(file.name);
+    (void)FuzzCommand(file.bytes.data(), file.bytes.size());
+  }
+}
+
+TEST_F(CommandCorpusReplayTest, ValidSeedsAreExecuted) {
+  const std::vector<CorpusFile> valid = Named(corpus_, "valid_");
+  ASSERT_GE(valid.size(), kMinValidSeeds);
+  for (const CorpusFile& file : valid) {
+    EXPECT_EQ(FuzzCommand(file.bytes.data(), file.bytes.size()), kapfix::v1::ERROR_CODE_UNSPECIFIED)
+        << file.name;
+  }
+}
+
+TEST_F(CommandCorpusReplayTest, BadSeedsAreRefused) {
+  const std::vector<CorpusFile> bad = Named(corpus_, "bad_");
+  ASSERT_GE(bad.size(), kMinBadSeeds);
+  for (const CorpusFile& file : bad) {
+    EXPECT_NE(FuzzCommand(file.bytes.data(), file.bytes.size()), kapfix::v1::ERROR_CODE_UNSPECIFIED)
+        << file.name;
+  }
+}
+
+}  // namespace
+}  // namespace kapfix::fuzz

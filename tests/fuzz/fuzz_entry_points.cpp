@@ -1,0 +1,159 @@
+#include "tests/fuzz/fuzz_entry_points.hpp"
+
+#include <google/protobuf/descriptor.h>
+#include <google/protobuf/message.h>
+#include <google/protobuf/stubs/logging.h>
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "agent/server/command_intake.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
+#include "tests/fuzz/executed_command_check.hpp"
+#include "tests/fuzz/invariant.hpp"
+#include "tests/link/fake_agent_control.hpp"
+
+namespace kapfix::fuzz {
+namespace {
+
+using google::protobuf::Message;
+using kapfix::v1::ErrorCode;
+
+constexpr const char* kAgentId = "kapfix-agent";
+// A ROUTER routing id as libzmq makes them: binary, 5 bytes.
+constexpr std::string_view kStation("\0\x80\x00\x41\xa7", 5);
+
+std::string_view TopicOf(std::uint8_t byte) {
+  const std::vector<std::string>& topics = kapfix::v1::Topics();
+  if (byte < topics.size()) return topics[byte];
+  return "unknown";
+}
+
+std::string_view Bytes(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+const kapfix::v1::Header& HeaderOf(const Message& message) {
+  const auto* field = message.GetDescriptor()->FindFieldByNumber(1);
+  return static_cast<const kapfix::v1::Header&>(
+      message.GetReflection()->GetMessage(message, field));
+}
+
+// A station records and replays what it receives (SessionRecorder): the message encodes to
+// bytes that decode to the same message, under the same topic.
+void RequireRoundTrip(std::string_view topic, const Message& message) {
+  const kapfix::v1::Envelope again = kapfix::v1::Encode(message);
+  Require(again.topic == topic, "a decoded message encodes under the topic it came on");
+  const std::unique_ptr<Message> copy = kapfix::v1::NewMessageForTopic(topic);
+  std::string error;
+  if (!kapfix::v1::DecodeEnvelope(topic, again.payload, copy.get(), kapfix::v1::kMaxMessageBytes,
+                                  &error)) {
+    Broken("a decoded message, encoded again, does not decode: " + error);
+  }
+  Require(copy->SerializeAsString() == again.payload, "a decoded message encodes to itself");
+}
+
+// Bytes published under one topic are never read as another type.
+void RequireNoOtherTypeReads(std::string_view topic, std::string_view payload) {
+  for (const std::string& other : kapfix::v1::Topics()) {
+    if (other == topic) continue;
+    const std::unique_ptr<Message> message = kapfix::v1::NewMessageForTopic(other);
+    Require(!kapfix::v1::DecodeEnvelope(topic, payload, message.get(), kapfix::v1::kMaxMessageBytes,
+                                        nullptr),
+            "bytes published under one topic decode as another topic's type");
+  }
+}
+
+// What the station needs of every reply: ok, or an error with a reason; and, stamped as the
+// server stamps it, bytes that decode at the station (no invalid UTF-8 echoed in a reason).
+void RequireWellFormed(const kapfix::v1::Reply& answer, std::uint64_t command_sequence) {
+  const bool refused = answer.error() != kapfix::v1::ERROR_CODE_UNSPECIFIED;
+  Require(answer.ok() != refused, "a reply is ok or carries an error, never both or neither");
+  Require(!refused || !answer.reason().empty(), "a refusal gives a reason");
+  kapfix::v1::Reply sent = answer;
+  sent.set_command_sequence(command_sequence);
+  kapfix::v1::Stamp(sent.mutable_header(), kAgentId, 1);
+  kapfix::v1::Reply received;
+  std::string error;
+  if (!kapfix::v1::DecodeEnvelope("reply", sent.SerializeAsString(), &received,
+                                  kapfix::v1::kMaxMessageBytes, &error)) {
+    Broken("the station cannot read the agent's reply: " + error);
+  }
+}
+
+void RequireExecutedAsPromised(const kapfix::v1::Command& command, std::uint64_t command_sequence,
+                               const kapfix::v1::AgentState& before) {
+  const kapfix::v1::Header& header = command.header();
+  Require(header.protocol_version() == kapfix::v1::kProtocolVersion,
+          "an executed command speaks our protocol version");
+  Require(header.sequence() > 0 && header.sequence() == command_sequence,
+          "an executed command is numbered, and its reply names that number");
+  Require(header.agent_id().empty() || header.agent_id() == kAgentId,
+          "an executed command is addressed to this agent");
+  RequireWithinLimits(command, before, kapfix::agent::CommandLimits{});
+}
+
+}  // namespace
+
+std::uint8_t TopicByte(std::string_view topic) {
+  const std::vector<std::string>& topics = kapfix::v1::Topics();
+  return static_cast<std::uint8_t>(std::find(topics.begin(), topics.end(), topic) - topics.begin());
+}
+
+bool FuzzStreamMessage(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return false;
+  const std::string_view topic = TopicOf(data[0]);
+  const std::string_view payload = Bytes(data + 1, size - 1);
+  const std::unique_ptr<Message> message = kapfix::v1::NewMessageForTopic(topic);
+  if (message == nullptr) {
+    const auto& topics = kapfix::v1::Topics();
+    Require(std::find(topics.begin(), topics.end(), topic) == topics.end(),
+            "every topic of Topics() has a message type");
+    return false;
+  }
+  std::string error;
+  ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
+  if (!kapfix::v1::DecodeEnvelope(topic, payload, message.get(), kapfix::v1::kMaxMessageBytes,
+                                  &error, &code)) {
+    Require(message->ByteSizeLong() == 0, "a refused message is left empty");
+    Require(!error.empty() && code != kapfix::v1::ERROR_CODE_UNSPECIFIED,
+            "a refused message comes with a reason and an error code");
+    return false;
+  }
+  Require(HeaderOf(*message).protocol_version() == kapfix::v1::kProtocolVersion,
+          "an accepted message speaks our protocol version");
+  RequireRoundTrip(topic, *message);
+  RequireNoOtherTypeReads(topic, payload);
+  return true;
+}
+
+ErrorCode FuzzCommand(const std::uint8_t* data, std::size_t size) {
+  const std::string_view payload = Bytes(data, size);
+  kapfix::testing::FakeAgentControl control;
+  const kapfix::v1::AgentState before = control.State();
+  kapfix::agent::CommandIntake intake(control, kAgentId);
+
+  const auto first = intake.Answer(kStation, "command", payload);
+  RequireWellFormed(first.reply, first.command_sequence);
+  const std::vector<kapfix::v1::Command> executed = control.commands();
+  Require(executed.size() == (first.reply.ok() ? 1U : 0U),
+          "a command is executed exactly when it is accepted");
+  if (!executed.empty()) {
+    RequireExecutedAsPromised(executed.front(), first.command_sequence, before);
+  }
+
+  // The same bytes again, as a REQ socket sends them (no topic frame): a replay.
+  const auto replay = intake.Answer(kStation, std::nullopt, payload);
+  RequireWellFormed(replay.reply, replay.command_sequence);
+  Require(control.commands().size() == executed.size(), "a replayed command is never executed");
+  Require(!first.station_heard || replay.reply.error() == kapfix::v1::ERROR_CODE_STALE_SEQUENCE,
+          "a replayed command is refused as stale");
+  return first.reply.error();
+}
+
+void SilenceProtobufLogs() { google::protobuf::SetLogHandler(nullptr); }
+
+}  // namespace kapfix::fuzz
