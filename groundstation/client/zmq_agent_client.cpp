@@ -20,7 +20,7 @@ struct ZmqAgentClient::VideoSlot {
 };
 
 ZmqAgentClient::ZmqAgentClient(ZmqAgentClientOptions options, QObject* parent)
-    : AgentClient(parent), options_(options) {
+    : AgentClient(parent), options_(std::move(options)) {
   status_timer_.setInterval(options_.status_poll);
   connect(&status_timer_, &QTimer::timeout, this, &ZmqAgentClient::refreshLinkState);
 }
