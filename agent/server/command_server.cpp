@@ -14,6 +14,7 @@
 
 #include "agent/server/command_intake.hpp"
 #include "agent/server/socket_thread_start.hpp"
+#include "agent/server/whole_message_receive.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 
 namespace kapfix::agent {
@@ -106,16 +107,8 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
   while (true) {
     Request request;
     try {
-      bool more = true;
-      while (more) {
-        zmq::message_t frame;
-        // Blocks; Stop() shuts the context down, which makes it throw ETERM. The frames after
-        // the first arrive together with it (ZeroMQ delivers whole messages).
-        (void)socket.recv(frame, zmq::recv_flags::none);
-        more = frame.more();
-        if (request.frames.size() < kMaxFramesKept) request.frames.push_back(std::move(frame));
-        ++request.frame_count;
-      }
+      // Blocks; Stop() shuts the context down, which makes it throw ETERM.
+      request.frame_count = ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames);
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;  // EINTR (a signal): the partial request is lost, its peer times out

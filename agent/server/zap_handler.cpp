@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "agent/server/whole_message_receive.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -124,14 +126,8 @@ void ZapHandler::Serve(zmq::socket_t& socket) {
   while (true) {
     std::vector<zmq::message_t> request;
     try {
-      bool more = true;
-      while (more) {
-        zmq::message_t frame;
-        (void)socket.recv(frame, zmq::recv_flags::none);
-        more = frame.more();
-        // Bounded: a well-formed request has 7 frames; libzmq is the only sender here.
-        if (request.size() <= kCredentials) request.push_back(std::move(frame));
-      }
+      // A well-formed request has 7 frames; libzmq is the only sender here.
+      (void)ReceiveWholeMessage(socket, kCredentials + 1, &request);
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;
