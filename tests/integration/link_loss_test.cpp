@@ -36,6 +36,8 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kOutage = std::chrono::seconds(60);
 constexpr double kPhotoIntervalS = 3;  // [s] of camera time, which is real time here
 constexpr double kCameraFps = 30;      // [frames/s] the built-in simulated camera's rate
+// [1] share of the camera's frames the agent must fly in real time: a loaded machine may lag.
+constexpr double kRealTimeShare = 0.8;
 // [s] issue 5's requirement, from starting the returning station to its last photo saved.
 constexpr double kResyncLimitS = 2.0;
 // [kB] RSS growth allowed over the outage. The agent keeps nothing per frame, per photo or per
@@ -207,9 +209,9 @@ TEST(LinkLossTest, AgentFliesOnInRealTimeWhileTheStationIsGone) {
   EXPECT_TRUE(outage.alive_after) << outage.agent.log();
   const auto after = TelemetryLines(outage.watch_after.out);
   ASSERT_FALSE(after.empty()) << outage.watch_after.err;
-  // At least 80 % of the frames of 60 s at 30 frames/s went by (a loaded machine may lag).
   const double outage_frames = kCameraFps * static_cast<double>(kOutage.count());
-  EXPECT_GE(static_cast<double>(after.front().frame - outage.frame_lost), 0.8 * outage_frames);
+  EXPECT_GE(static_cast<double>(after.front().frame - outage.frame_lost),
+            kRealTimeShare * outage_frames);
 }
 
 TEST(LinkLossTest, AgentKeepsSavingPhotosWhileTheStationIsGone) {
@@ -221,12 +223,12 @@ TEST(LinkLossTest, AgentKeepsSavingPhotosWhileTheStationIsGone) {
     const std::int64_t t = metadata.capture_time_us() - outage.lost_us;
     if (t >= 0 && t < outage_us) ++during;
   }
-  // One every 3 s for 60 s; one may straddle each end.
-  const auto expected =
-      static_cast<std::size_t>(static_cast<double>(kOutage.count()) / kPhotoIntervalS);
-  EXPECT_GE(during, expected - 2) << "photos before " << outage.photos_before << ", after "
-                                  << outage.photos_after;
-  EXPECT_LE(during, expected + 1);
+  // One every 3 s of camera time for 60 s: 20. The camera may lag the wall clock by 20 % on a
+  // loaded machine (as in the test above), and one photo may straddle each end.
+  const double expected = static_cast<double>(kOutage.count()) / kPhotoIntervalS;
+  EXPECT_GE(static_cast<double>(during), std::floor(kRealTimeShare * expected) - 1)
+      << "photos before " << outage.photos_before << ", after " << outage.photos_after;
+  EXPECT_LE(static_cast<double>(during), expected + 1);
 }
 
 TEST(LinkLossTest, AgentHoldsTheChosenSliceWhileTheStationIsGone) {
