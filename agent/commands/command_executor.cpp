@@ -93,11 +93,13 @@ kapfix::v1::Reply CommandExecutor::Execute(const kapfix::v1::Command& command) {
     }
     case kapfix::v1::Command::kRequestState: {
       const kapfix::v1::RequestState& request = command.request_state();
+      kapfix::v1::Reply reply = Ok();
       if (request.resend_photos_since_us() > 0) {
-        targets_.photos.Resend(request.resend_photos_since_us());
+        for (std::string& name : targets_.photos.Resend(request.resend_photos_since_us())) {
+          reply.add_photos_resent(std::move(name));
+        }
       }
       if (request.resend_slice_report()) targets_.state.RepublishSliceReport();
-      kapfix::v1::Reply reply = Ok();
       *reply.mutable_state() = targets_.state.State();
       return reply;
     }

@@ -51,12 +51,18 @@ void PhotoTaker::SetInterval(double seconds) {
   interval_s_ = seconds;
 }
 
-void PhotoTaker::Resend(std::int64_t since_us) {
+std::vector<std::string> PhotoTaker::Resend(std::int64_t since_us) {
+  std::vector<kapfix::v1::PhotoMetadata> photos = store_.ListSince(since_us);
+  std::vector<std::string> names;
+  names.reserve(photos.size());
+  for (const auto& metadata : photos) names.push_back(metadata.file_name());
+  if (photos.empty()) return names;
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back(Job{cv::Mat(), {}, since_us});
+    jobs_.push_back(Job{cv::Mat(), {}, std::move(photos)});
   }
   wake_.notify_one();
+  return names;
 }
 
 void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcome*/,
@@ -93,7 +99,7 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcom
   metadata.set_slice(static_cast<std::uint32_t>(record.slice));
   metadata.set_lens_profile(lens_ ? lens_() : std::string());
   metadata.set_confidence(static_cast<float>(record.confidence));
-  Job job{frame.image.clone(), std::move(metadata), 0};
+  Job job{frame.image.clone(), std::move(metadata), {}};
   {
     std::lock_guard lock(mutex_);
     jobs_.push_back(std::move(job));
@@ -138,7 +144,7 @@ void PhotoTaker::WriterThread() {
     jobs_.pop_front();
     lock.unlock();
     if (job.image.empty()) {
-      for (const auto& metadata : store_.ListSince(job.resend_since_us)) {
+      for (const auto& metadata : job.resend) {
         try {
           Offer(metadata, store_.ReadFile(metadata.file_name()));
         } catch (const std::exception& e) {

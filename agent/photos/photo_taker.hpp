@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "agent/photos/photo_store.hpp"
 #include "agent/pipeline/step_observer.hpp"
@@ -38,8 +39,10 @@ class PhotoTaker : public StepObserver {
   // Any thread. A photo of the next frame; false (and why) when the store cannot take one now.
   bool Request(const std::string& note, std::string* error);
   void SetInterval(double seconds);  // [s] 0 = off
-  // Publishes again every stored photo taken at or after `since_us`.
-  void Resend(std::int64_t since_us);
+  // Publishes again every stored photo taken at or after `since_us`; returns their file
+  // names, oldest first. They are listed now and sent by the writer thread, so the names are
+  // what a station will get.
+  std::vector<std::string> Resend(std::int64_t since_us);
 
   std::uint64_t saved() const { return saved_.load(); }
   std::uint64_t failed() const { return failed_.load(); }
@@ -52,7 +55,7 @@ class PhotoTaker : public StepObserver {
   struct Job {
     cv::Mat image;  // empty: a resend
     kapfix::v1::PhotoMetadata metadata;
-    std::int64_t resend_since_us = 0;
+    std::vector<kapfix::v1::PhotoMetadata> resend;  // the stored photos to send again
   };
   void WriterThread();
   void Offer(const kapfix::v1::PhotoMetadata& metadata, const std::string& bytes);

@@ -1,26 +1,13 @@
 #include "tests/integration/agent_process.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <stdlib.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <chrono>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "tests/link/link_test_support.hpp"
 
-extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, for posix_spawn
-
 namespace kapfix::testing {
-namespace {}  // namespace
 
 AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
   std::string pattern =
@@ -42,19 +29,7 @@ AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
       "--photos",          photos().string(),
       "--state-dir",       (folder_ / "state").string()};
   args.insert(args.end(), extra.begin(), extra.end());
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  const std::string out = (folder_ / "agent.out").string();
-  const std::string err = (folder_ / "agent.err").string();
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int failed = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (failed != 0) throw std::runtime_error("cannot start " + args[0]);
+  process_ = std::make_unique<ChildProcess>(args, folder_ / "agent.out", folder_ / "agent.err");
 }
 
 AgentProcess::~AgentProcess() {
@@ -63,42 +38,32 @@ AgentProcess::~AgentProcess() {
   std::filesystem::remove_all(folder_, ignored);
 }
 
-bool AgentProcess::running() {
-  if (pid_ <= 0) return false;
-  int status = 0;
-  if (::waitpid(pid_, &status, WNOHANG) == 0) return true;
-  pid_ = -1;
-  exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return false;
-}
+bool AgentProcess::running() { return process_->running(); }
 
-int AgentProcess::Stop() {
-  if (pid_ <= 0) return exit_code_;
-  ::kill(pid_, SIGTERM);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  int status = 0;
-  while (::waitpid(pid_, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, &status, 0);
-      pid_ = -1;
-      return exit_code_ = -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  pid_ = -1;
-  exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return exit_code_;
-}
+pid_t AgentProcess::pid() const { return process_->pid(); }
+
+int AgentProcess::Stop() { return process_->Stop(SIGTERM); }
 
 std::string AgentProcess::log() const { return ReadFile(folder_ / "agent.err"); }
 
+std::vector<std::string> AgentProcess::CtlCommand(const std::vector<std::string>& args) const {
+  std::vector<std::string> command = {KAPFIX_CTL,
+                                      "--agent",
+                                      "127.0.0.1",
+                                      "--command-port",
+                                      std::to_string(command_port_),
+                                      "--stream-port",
+                                      std::to_string(stream_port_),
+                                      "--timeout",
+                                      "5000"};
+  command.insert(command.end(), args.begin(), args.end());
+  return command;
+}
+
 AgentProcess::CtlOutcome AgentProcess::Ctl(const std::string& args) const {
-  const std::filesystem::path err_file = folder_ / "ctl.err";
-  const std::string command = std::string(KAPFIX_CTL) + " --agent 127.0.0.1 --command-port " +
-                              std::to_string(command_port_) + " --stream-port " +
-                              std::to_string(stream_port_) + " --timeout 5000 " + args;
-  const ProcessOutcome run = RunProcess(command, err_file);
+  std::string command_line;
+  for (const std::string& word : CtlCommand({})) command_line += word + " ";
+  const ProcessOutcome run = RunProcess(command_line + args, folder_ / "ctl.err");
   return {run.exit_code, run.out, run.err};
 }
 

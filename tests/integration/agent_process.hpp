@@ -3,8 +3,11 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "tests/integration/child_process.hpp"
 
 namespace kapfix::testing {
 
@@ -21,7 +24,8 @@ class AgentProcess {
 
   // SIGTERM, then waits; the exit code (-1 when it did not exit normally within 10 s).
   int Stop();
-  bool running();  // reaps it when it has exited
+  bool running();     // reaps it when it has exited
+  pid_t pid() const;  // -1 once it has exited and been reaped
 
   pid_t pid() const { return pid_; }  // -1 once reaped
   int command_port() const { return command_port_; }
@@ -41,13 +45,15 @@ class AgentProcess {
     std::string err;
   };
   CtlOutcome Ctl(const std::string& args) const;
+  // kapfix-ctl's arguments pointed at this agent, then `args`: e.g. for a station run in the
+  // background as a ChildProcess.
+  std::vector<std::string> CtlCommand(const std::vector<std::string>& args) const;
 
  private:
   std::filesystem::path folder_;
   int command_port_ = 0;
   int stream_port_ = 0;
-  pid_t pid_ = -1;
-  int exit_code_ = -1;
+  std::unique_ptr<ChildProcess> process_;
 };
 
 }  // namespace kapfix::testing

@@ -235,6 +235,8 @@ TEST(AgentLinkClientTest, SequenceGapOnAStreamIsCounted) {
   send(4);
   ASSERT_TRUE(WaitFor([&] { return client.Status().sequence_gaps > 0; }));
   EXPECT_EQ(client.Status().sequence_gaps, 2U);
+  EXPECT_EQ(client.SequenceGaps("telemetry"), 2U);
+  EXPECT_EQ(client.SequenceGaps("photo"), 0U);
 }
 
 TEST(AgentLinkClientTest, StopAnswersPendingRequestsWithNothing) {

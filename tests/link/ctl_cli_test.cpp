@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdio>
@@ -170,6 +171,15 @@ TEST_F(CtlTest, WatchPrintsCountTelemetryLines) {
   EXPECT_EQ(count, 3);
 }
 
+TEST_F(CtlTest, WatchSummaryCountsTheTelemetryAndItsSequenceGapsInOneLine) {
+  TelemetryPump pump(agent_.publisher);
+  const auto outcome = Run("watch --duration 0.5 --summary");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_THAT(outcome.out, StartsWith("watch telemetry="));
+  EXPECT_THAT(outcome.out, HasSubstr(" sequence_gaps=0 dropped_by_agent=0 seconds="));
+  EXPECT_EQ(std::count(outcome.out.begin(), outcome.out.end(), '\n'), 1);
+}
+
 TEST_F(CtlTest, WatchExitsThreeWhenNothingListens) {
   UnusedPort port;
   const std::string p = std::to_string(port.port());
@@ -196,6 +206,24 @@ TEST_F(CtlTest, PhotoSaveWritesTheAgentsPhotoToTheFolder) {
 
 TEST_F(CtlTest, PhotoSaveIntoAMissingFolderExitsTwo) {
   EXPECT_EQ(Run("photo --save " + (folder_ / "missing").string()).exit_code, 2);
+  EXPECT_TRUE(agent_.control.commands().empty());
+}
+
+TEST_F(CtlTest, ResyncPrintsTheStateAndSavesThePhotosTheAgentResends) {
+  agent_.control.HoldStoredPhoto();
+  const auto outcome = Run("resync --photos-since-us 1 --save " + folder_.string());
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_THAT(outcome.out, HasSubstr("gains: controller=pid p=0.8 "));
+  EXPECT_THAT(outcome.out, HasSubstr("resync photos_resent=1 photos_saved=1 seconds="));
+  EXPECT_EQ(ReadFile(folder_ / FakeAgentControl::kPhotoName), FakeAgentControl::PhotoBytes());
+  const auto commands = agent_.control.commands();
+  ASSERT_EQ(commands.size(), 1U);
+  EXPECT_EQ(commands[0].request_state().resend_photos_since_us(), 1);
+  EXPECT_TRUE(commands[0].request_state().resend_slice_report());
+}
+
+TEST_F(CtlTest, ResyncAskingForPhotosWithoutAFolderExitsTwo) {
+  EXPECT_EQ(Run("resync --photos-since-us 1").exit_code, 2);
   EXPECT_TRUE(agent_.control.commands().empty());
 }
 

@@ -89,6 +89,10 @@ kapfix::v1::Reply FakeAgentControl::Execute(const kapfix::v1::Command& command) 
         break;
       case kapfix::v1::Command::kRequestState:
         *reply.mutable_state() = state_;
+        // Its stored photo counts as taken after any time asked for.
+        if (holds_stored_photo_ && command.request_state().resend_photos_since_us() > 0) {
+          reply.add_photos_resent(kPhotoName);
+        }
         break;
       default:
         break;
@@ -99,7 +103,9 @@ kapfix::v1::Reply FakeAgentControl::Execute(const kapfix::v1::Command& command) 
       command.set_mode().mode() == kapfix::v1::MODE_SSP) {
     PublishSlices(*publisher);
   }
-  if (publisher != nullptr && command.has_take_photo()) PublishPhoto(*publisher);
+  if (publisher != nullptr && (command.has_take_photo() || reply.photos_resent_size() > 0)) {
+    PublishPhoto(*publisher);
+  }
   reply.set_ok(true);
   return reply;
 }
@@ -120,6 +126,11 @@ void FakeAgentControl::RefuseWith(kapfix::v1::ErrorCode code, std::string reason
   refusal_->set_ok(false);
   refusal_->set_error(code);
   refusal_->set_reason(std::move(reason));
+}
+
+void FakeAgentControl::HoldStoredPhoto() {
+  const std::lock_guard lock(mutex_);
+  holds_stored_photo_ = true;
 }
 
 void FakeAgentControl::ThrowOnExecute(std::string what) {

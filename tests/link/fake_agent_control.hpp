@@ -32,6 +32,9 @@ class FakeAgentControl : public kapfix::agent::AgentControl {
   void SetPublisher(kapfix::agent::StreamPublisher* publisher);
   // Every later command is refused with this code and reason.
   void RefuseWith(kapfix::v1::ErrorCode code, std::string reason);
+  // From now on it holds one stored photo (kPhotoName), which request_state with
+  // resend_photos_since_us names in its reply and publishes again.
+  void HoldStoredPhoto();
   // Every later Execute() throws std::runtime_error(what).
   void ThrowOnExecute(std::string what);
 
@@ -44,6 +47,7 @@ class FakeAgentControl : public kapfix::agent::AgentControl {
   std::optional<kapfix::v1::Reply> refusal_;
   std::optional<std::string> failure_;
   kapfix::agent::StreamPublisher* publisher_ = nullptr;
+  bool holds_stored_photo_ = false;
 };
 
 }  // namespace kapfix::testing

@@ -103,9 +103,10 @@ struct AgentLinkClient::Impl {
   bool stopping = false;
   bool running = false;
 
-  mutable std::mutex status_mutex;  // guards status, streams_heard
+  mutable std::mutex status_mutex;  // guards status, gaps_by_topic, streams_heard
   std::condition_variable streams_arrived;
   LinkStatus status;
+  std::map<std::string, std::uint64_t, std::less<>> gaps_by_topic;  // [count]
   bool streams_heard = false;
 
   std::unique_ptr<zmq::context_t> context;
@@ -302,7 +303,9 @@ void AgentLinkClient::Impl::HandleStream(std::string_view topic, std::string_vie
     std::uint64_t& last = last_sequence[std::string(topic)];
     // A lower or equal number means the agent restarted its numbering: start over.
     if (last != 0 && header->sequence() > last + 1) {
-      status.sequence_gaps += header->sequence() - last - 1;
+      const std::uint64_t missing = header->sequence() - last - 1;
+      status.sequence_gaps += missing;
+      gaps_by_topic[std::string(topic)] += missing;
     }
     last = header->sequence();
     streams_heard = true;
@@ -478,6 +481,12 @@ void AgentLinkClient::RequestAsync(Command command, std::chrono::milliseconds ti
 bool AgentLinkClient::WaitForStreams(std::chrono::milliseconds timeout) {
   std::unique_lock lock(impl_->status_mutex);
   return impl_->streams_arrived.wait_for(lock, timeout, [this] { return impl_->streams_heard; });
+}
+
+std::uint64_t AgentLinkClient::SequenceGaps(std::string_view topic) const {
+  const std::lock_guard lock(impl_->status_mutex);
+  const auto it = impl_->gaps_by_topic.find(topic);
+  return it == impl_->gaps_by_topic.end() ? 0 : it->second;
 }
 
 LinkStatus AgentLinkClient::Status() const {

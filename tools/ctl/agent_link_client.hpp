@@ -105,6 +105,8 @@ class AgentLinkClient {
   bool WaitForStreams(std::chrono::milliseconds timeout);
 
   LinkStatus Status() const;
+  // [count] LinkStatus::sequence_gaps of one topic only, e.g. "telemetry".
+  std::uint64_t SequenceGaps(std::string_view topic) const;
 
  private:
   struct Impl;

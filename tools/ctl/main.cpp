@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -14,6 +15,7 @@
 #include <iostream>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -108,6 +110,13 @@ void PrintLine(const std::string& line) {
   std::fflush(stdout);
 }
 
+// "1.23": seconds with two decimals, for the summary lines.
+std::string SecondsText(double seconds) {
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%.2f", seconds);
+  return text.data();
+}
+
 // True while the agent was heard within --timeout (counting from `since` if never heard).
 bool LinkAlive(const AgentLinkClient& client, const LinkArguments& link, Clock::time_point since) {
   if (client.Status().up) return true;
@@ -149,21 +158,49 @@ int RunStatus(const LinkArguments& link, bool json) {
   return kOk;
 }
 
-int RunWatch(const LinkArguments& link, int count) {
-  std::atomic<int> printed{0};  // before the client, whose handler uses it
+struct WatchOptions {
+  int count = 0;          // [messages] stop after this many; 0 = no limit
+  double duration_s = 0;  // [s] stop after this long; 0 = no limit
+  bool summary = false;   // one line at the end instead of a line per message
+};
+
+int RunWatch(const LinkArguments& link, const WatchOptions& watch) {
+  std::atomic<int> received{0};  // before the client, whose handler uses it
+  // Telemetry.telemetry_dropped on the first and the latest message: what the agent could not
+  // hand to the link while we listened. I/O thread only until the client stops.
+  std::optional<std::uint64_t> first_dropped;
+  std::uint64_t last_dropped = 0;
   auto client = MakeClient(link);
   client->OnMessage("telemetry", [&](const google::protobuf::Message& message) {
-    if (count > 0 && printed.load() >= count) return;
-    PrintLine(kapfix::ctl::TelemetryText(static_cast<const kapfix::v1::Telemetry&>(message)));
-    printed.fetch_add(1);
+    if (watch.count > 0 && received.load() >= watch.count) return;
+    const auto& telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
+    if (!first_dropped) first_dropped = telemetry.telemetry_dropped();
+    last_dropped = telemetry.telemetry_dropped();
+    if (!watch.summary) PrintLine(kapfix::ctl::TelemetryText(telemetry));
+    received.fetch_add(1);
   });
   client->Start();
   const auto start = Clock::now();
-  while (!g_interrupted.load() && (count <= 0 || printed.load() < count)) {
-    if (!LinkAlive(*client, link, start)) return LinkDown(*client, link);
+  const auto duration = std::chrono::duration<double>(watch.duration_s);
+  int code = kOk;
+  while (!g_interrupted.load() && (watch.count <= 0 || received.load() < watch.count)) {
+    if (watch.duration_s > 0 && Clock::now() - start >= duration) break;
+    if (!LinkAlive(*client, link, start)) {
+      code = LinkDown(*client, link);
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return kOk;
+  const std::uint64_t gaps = client->SequenceGaps("telemetry");
+  client->Stop();  // the handler's variables are ours from here on
+  if (watch.summary) {
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    PrintLine("watch telemetry=" + std::to_string(received.load()) +
+              " sequence_gaps=" + std::to_string(gaps) +
+              " dropped_by_agent=" + std::to_string(last_dropped - first_dropped.value_or(0)) +
+              " seconds=" + SecondsText(seconds));
+  }
+  return code;
 }
 
 int RunSet(const LinkArguments& link, const std::string& key, const std::string& value) {
@@ -284,6 +321,94 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
   return kOk;
 }
 
+// What a station asks for when the link comes back (as the Qt station's LinkResync): the
+// agent's state, its latest SSP result again, and every stored photo taken at or after
+// `photos_since_us`, which are saved in `save_folder`. The reply names those photos, so we
+// know when we have caught up; other photos that arrive meanwhile (taken now) are kept too.
+int RunResync(const LinkArguments& link, std::int64_t photos_since_us,
+              const std::string& save_folder) {
+  const auto start = Clock::now();
+  if (!save_folder.empty() && !std::filesystem::is_directory(save_folder)) {
+    Error("--save: '" + save_folder + "' is not a folder");
+    return kBadArguments;
+  }
+  // Before the client: its I/O thread uses them until the client is destroyed.
+  kapfix::link::PhotoAssembler assembler;  // used on the I/O thread only
+  Inbox<kapfix::link::AssembledPhoto> photos;
+  Inbox<kapfix::v1::SliceReport> reports;
+  std::mutex telemetry_mutex;  // guards latest_telemetry
+  std::optional<kapfix::v1::Telemetry> latest_telemetry;
+  auto client = MakeClient(link);
+  if (!save_folder.empty()) {
+    client->OnMessage("photo", [&](const google::protobuf::Message& message) {
+      if (auto photo = assembler.Add(static_cast<const kapfix::v1::Photo&>(message))) {
+        photos.Put(*photo);
+      }
+    });
+  }
+  client->OnMessage("slices", [&](const google::protobuf::Message& message) {
+    reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
+  });
+  // Telemetry flows with every frame: subscribed to it, StreamsReady returns within a frame
+  // instead of waiting up to a second for the agent's heartbeat. Its latest line is printed.
+  client->OnMessage("telemetry", [&](const google::protobuf::Message& message) {
+    const std::lock_guard lock(telemetry_mutex);
+    latest_telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
+  });
+  client->Start();
+  if (!StreamsReady(*client, link)) return LinkDown(*client, link);
+  if (!save_folder.empty()) photos.Arm();
+  reports.Arm();
+  Command command;
+  command.mutable_request_state()->set_resend_photos_since_us(photos_since_us);
+  command.mutable_request_state()->set_resend_slice_report(true);
+  kapfix::v1::Reply reply;
+  const int code = Send(*client, link, std::move(command), &reply);
+  if (code != kOk) return code;
+  std::cout << kapfix::ctl::StateText(reply.state());
+  std::cout.flush();
+
+  // The agent republishes its SSP result only when it has one.
+  bool report_pending = reply.state().has_last_slice_report();
+  std::set<std::string> missing(reply.photos_resent().begin(), reply.photos_resent().end());
+  std::size_t saved = 0;
+  const auto deadline = Clock::now() + link.timeout();
+  while (report_pending || !missing.empty()) {
+    if (g_interrupted.load()) return kNoAnswer;
+    if (Clock::now() >= deadline || !client->Status().up) {
+      Error("resync incomplete: " + std::to_string(missing.size()) + " of " +
+            std::to_string(reply.photos_resent_size()) + " photos" +
+            (report_pending ? " and the SSP result" : "") + " not received within " +
+            std::to_string(link.timeout_ms) + " ms");
+      return kNoAnswer;
+    }
+    if (const auto report = reports.Take(std::chrono::milliseconds(0))) {
+      if (report->finished()) {
+        PrintLine(kapfix::ctl::SliceReportText(*report));
+        report_pending = false;
+      }
+    }
+    if (const auto photo = photos.Take(std::chrono::milliseconds(20))) {
+      try {
+        PrintLine("photo " + kapfix::link::PhotoAssembler::Save(*photo, save_folder).string());
+      } catch (const std::exception& error) {
+        Error(error.what());
+        return kBadArguments;
+      }
+      missing.erase(photo->metadata.file_name());
+      ++saved;
+    }
+  }
+  {
+    const std::lock_guard lock(telemetry_mutex);
+    if (latest_telemetry) PrintLine(kapfix::ctl::TelemetryText(*latest_telemetry));
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  PrintLine("resync photos_resent=" + std::to_string(reply.photos_resent_size()) +
+            " photos_saved=" + std::to_string(saved) + " seconds=" + SecondsText(seconds));
+  return kOk;
+}
+
 int RunRecord(const LinkArguments& link, const std::string& file, int count, double duration_s) {
   std::optional<kapfix::link::SessionRecorder> recorder;
   try {
@@ -367,10 +492,16 @@ int Main(int argc, char** argv) {
   auto* status = app.add_subcommand("status", "print the agent's mode and settings");
   status->add_flag("--json", json, "print the AgentState as JSON");
 
-  int watch_count = 0;
+  WatchOptions watch_options;
   auto* watch = app.add_subcommand("watch", "print one line per telemetry message");
-  watch->add_option("--count", watch_count, "stop after N lines (default: until Ctrl-C)")
+  watch->add_option("--count", watch_options.count, "stop after N messages (default: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
+  watch->add_option("--duration", watch_options.duration_s, "[s] stop after this long")
+      ->check(CLI::NonNegativeNumber);
+  watch->add_flag("--summary", watch_options.summary,
+                  "instead of a line per message, print one line at the end: telemetry "
+                  "messages received, sequence gaps (messages lost on the link), messages the "
+                  "agent dropped before the link, seconds");
 
   std::string key;
   std::string value;
@@ -398,6 +529,19 @@ int Main(int argc, char** argv) {
   auto* photo = app.add_subcommand("photo", "take a stabilised photo on the agent");
   photo->add_option("--save", save_folder, "also receive it and save it in this folder");
   photo->add_option("--note", note, "text stored in the photo's sidecar");
+
+  std::int64_t resync_since_us = 0;
+  std::string resync_folder;
+  auto* resync = app.add_subcommand(
+      "resync", "catch up after a link loss: state, latest SSP result, photos taken meanwhile");
+  auto* resync_save = resync->add_option("--save", resync_folder,
+                                         "save the photos the agent sends again in this folder");
+  resync
+      ->add_option("--photos-since-us", resync_since_us,
+                   "[µs since epoch] ask again for the photos taken at or after this time "
+                   "(default 0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(resync_save);
 
   std::string record_file;
   int record_count = 0;
@@ -436,7 +580,7 @@ int Main(int argc, char** argv) {
   std::signal(SIGTERM, OnInterrupt);
   try {
     if (*status) return RunStatus(link, json);
-    if (*watch) return RunWatch(link, watch_count);
+    if (*watch) return RunWatch(link, watch_options);
     if (*set) return RunSet(link, key, value);
     if (*ssp) return RunSsp(link, wait, ssp_frames);
     if (*slice) {
@@ -450,6 +594,7 @@ int Main(int argc, char** argv) {
       return RunSimple(link, std::move(command));
     }
     if (*photo) return RunPhoto(link, save_folder, note);
+    if (*resync) return RunResync(link, resync_since_us, resync_folder);
     if (*record) return RunRecord(link, record_file, record_count, record_duration_s);
   } catch (const std::runtime_error& error) {
     // The link client refuses an endpoint ZeroMQ cannot read: a bad --agent.

@@ -1,11 +1,13 @@
 // CommandExecutor: settings commands reach the StateKeeper (or are refused with the field
 // named), a photo is refused when the disk cannot take it, request_state answers with the
-// state.
+// state and the names of the photos it sends again.
 #include "agent/commands/command_executor.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "tests/agent/support/recording_stream_sink.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -121,6 +123,25 @@ TEST(CommandExecutorTest, RequestStateCanAskForTheSliceReportAgain) {
   ASSERT_TRUE(reply.ok()) << reply.reason();
   EXPECT_EQ(reply.state().last_slice_report().recommended_slice(), 2u);
   EXPECT_EQ(rig.sink.Messages<kapfix::v1::SliceReport>().size(), 2u);
+}
+
+TEST(CommandExecutorTest, RequestStateNamesTheStoredPhotosItResends) {
+  TempDir temp;
+  Rig rig(temp.path());
+  const cv::Mat image(16, 16, CV_8UC3, cv::Scalar(10, 20, 30));
+  std::vector<std::string> names;
+  for (const std::int64_t time_us : {1000, 2000, 3000}) {
+    kapfix::v1::PhotoMetadata metadata;
+    metadata.set_capture_time_us(time_us);
+    names.push_back(rig.store.Save(image, metadata, nullptr).file_name());
+  }
+  kapfix::v1::Command command;
+  command.mutable_request_state()->set_resend_photos_since_us(2000);
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  ASSERT_TRUE(reply.ok()) << reply.reason();
+  ASSERT_EQ(reply.photos_resent_size(), 2);
+  EXPECT_EQ(reply.photos_resent(0), names[1]);
+  EXPECT_EQ(reply.photos_resent(1), names[2]);
 }
 
 TEST(CommandExecutorTest, UnknownModeIsRefusedAsOutOfRange) {

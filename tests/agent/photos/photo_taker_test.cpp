@@ -141,7 +141,7 @@ TEST(PhotoTakerTest, ResendRepublishesTheStoredPhotosSinceTheGivenTime) {
   late.set_capture_time_us(2000);
   rig.store.Save(image, early, nullptr);
   const kapfix::v1::PhotoMetadata kept = rig.store.Save(image, late, nullptr);
-  rig.taker.Resend(1500);
+  EXPECT_EQ(rig.taker.Resend(1500), std::vector<std::string>{kept.file_name()});
   ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const auto chunks = rig.sink.Messages<kapfix::v1::Photo>();
