@@ -27,7 +27,6 @@ class AgentProcess {
   bool running();     // reaps it when it has exited
   pid_t pid() const;  // -1 once it has exited and been reaped
 
-  pid_t pid() const { return pid_; }  // -1 once reaped
   int command_port() const { return command_port_; }
   int stream_port() const { return stream_port_; }
   const std::filesystem::path& folder() const { return folder_; }
