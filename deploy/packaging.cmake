@@ -23,6 +23,10 @@ foreach(program IN ITEMS kapfix-agent kapfix-keygen)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/deploy/kapfix-agent.service
         DESTINATION ${KAPFIX_SYSTEMD_UNIT_DIR} COMPONENT agent)
+# Lets the agent (group plugdev) open a Maestro's native USB interface to set its serial
+# timeout and home positions (agent/servo/libusb_maestro_usb_port.hpp).
+install(FILES ${PROJECT_SOURCE_DIR}/deploy/udev/99-kapfix-maestro.rules
+        DESTINATION /lib/udev/rules.d COMPONENT agent)
 # The kite rig is the default configuration; the operator edits it (a conffile: upgrades keep
 # local changes).
 install(FILES ${PROJECT_SOURCE_DIR}/resources/kite.json

@@ -64,6 +64,7 @@ void ReadServo(ConfigReader& r, ServoConfig* c) {
                              Enum<ServoBackend>(ParseServoBackend, "sim, maestro or pca9685"));
   r.Read("device", &c->device);
   r.Read("baud", &c->baud);
+  r.Read("maestro_timeout_ms", &c->maestro_timeout_ms);
   r.ReadInteger("i2c_address", &c->i2c_address);
   r.Read("pwm_hz", &c->pwm_hz);
   r.Read("oscillator_hz", &c->oscillator_hz);
@@ -215,6 +216,22 @@ bool AgentConfig::IsValid(std::string* error) const {
   if (state_dir.empty()) return fail("state_dir: must name a folder");
   if (watchdog_ms < 20 || watchdog_ms > 60000) {
     return fail("watchdog_ms: must be 20…60000 ms, got " + std::to_string(watchdog_ms));
+  }
+  if (servo.backend == ServoBackend::kMaestro) {
+    // The Maestro parks the servos when no command came for maestro_timeout_ms: the loop
+    // commands once per frame, so a shorter timeout parks in flight; the watchdog parks
+    // (a command) after watchdog_ms, so a longer one adds nothing and parks later if the
+    // agent dies.
+    const double frame_ms = 1000.0 / camera.fps;
+    if (servo.maestro_timeout_ms > watchdog_ms) {
+      return fail("servo.maestro_timeout_ms: " + std::to_string(servo.maestro_timeout_ms) +
+                  " ms must not exceed watchdog_ms (" + std::to_string(watchdog_ms) + " ms)");
+    }
+    if (!(servo.maestro_timeout_ms > frame_ms)) {
+      return fail("servo.maestro_timeout_ms: " + std::to_string(servo.maestro_timeout_ms) +
+                  " ms must exceed a camera frame period (" + std::to_string(frame_ms) +
+                  " ms at camera.fps " + std::to_string(camera.fps) + ")");
+    }
   }
   return true;
 }

@@ -59,6 +59,15 @@ bool AxisIsValid(const ServoAxisConfig& axis, const char* name, std::string* err
 
 bool ServoConfig::IsValid(std::string* error) const {
   if (!AxisIsValid(pan, "pan", error) || !AxisIsValid(tilt, "tilt", error)) return false;
+  if (maestro_timeout_ms < 10 || maestro_timeout_ms > 60000 || maestro_timeout_ms % 10 != 0) {
+    if (error) {
+      *error =
+          "servo.maestro_timeout_ms: must be 10…60000 ms in 10 ms steps (the Maestro's "
+          "resolution), got " +
+          std::to_string(maestro_timeout_ms);
+    }
+    return false;
+  }
   std::string reason;
   if (backend == ServoBackend::kMaestro && !ToMaestroOptions().IsValid(&reason)) {
     if (error) *error = "servo: " + reason;
@@ -77,6 +86,9 @@ MaestroServoDriverOptions ServoConfig::ToMaestroOptions() const {
   o.baud = baud;
   o.pan = pan.mapping;
   o.tilt = tilt.mapping;
+  o.serial_timeout_ms = maestro_timeout_ms;
+  o.pan_home_deg = pan.limits.park_deg;
+  o.tilt_home_deg = tilt.limits.park_deg;
   return o;
 }
 

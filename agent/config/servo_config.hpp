@@ -29,8 +29,12 @@ struct ServoAxisConfig {
 // The "servo" section. Defaults: resources/README.md.
 struct ServoConfig {
   ServoBackend backend = ServoBackend::kSim;
-  std::string device;           // "" = /dev/ttyACM0 (maestro) or /dev/i2c-1 (pca9685)
-  int baud = 115200;            // [bit/s] maestro
+  std::string device;  // "" = /dev/ttyACM0 (maestro) or /dev/i2c-1 (pca9685)
+  int baud = 115200;   // [bit/s] maestro
+  // [ms] maestro: its serial timeout, set over USB at start-up; with no command for this
+  // long it sends pan and tilt to park_deg. 10…60000 in 10 ms steps; AgentConfig checks
+  // frame period < it ≤ watchdog_ms.
+  int maestro_timeout_ms = 500;
   int i2c_address = 0x40;       // pca9685
   double pwm_hz = 50;           // [Hz] pca9685
   double oscillator_hz = 25e6;  // [Hz] pca9685

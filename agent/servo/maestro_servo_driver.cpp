@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "agent/servo/libusb_maestro_usb_port.hpp"
 #include "agent/servo/maestro_protocol.hpp"
 
 namespace kapfix::agent {
@@ -61,11 +62,33 @@ bool MaestroServoDriverOptions::IsValid(std::string* error) const {
     return fail("Maestro answer_timeout_ms must be 1…10000, got " +
                 std::to_string(answer_timeout_ms));
   }
+  if (serial_timeout_ms < 10 || serial_timeout_ms > 60000 || serial_timeout_ms % 10 != 0) {
+    return fail("Maestro serial_timeout_ms must be 10…60000 in 10 ms steps, got " +
+                std::to_string(serial_timeout_ms));
+  }
+  if (!std::isfinite(pan_home_deg) || !std::isfinite(tilt_home_deg)) {
+    return fail("Maestro home angles must be finite");
+  }
   return true;
 }
 
-MaestroServoDriver::MaestroServoDriver(MaestroServoDriverOptions options)
-    : options_(std::move(options)) {}
+MaestroUsbSettings MaestroServoDriverOptions::UsbSettings() const {
+  MaestroUsbSettings settings;
+  settings.serial_timeout_ms = serial_timeout_ms;
+  settings.homes = {
+      {.channel = pan.channel,
+       .home_quarter_us = maestro::QuarterMicroseconds(pan.PulseUs(pan_home_deg))},
+      {.channel = tilt.channel,
+       .home_quarter_us = maestro::QuarterMicroseconds(tilt.PulseUs(tilt_home_deg))},
+  };
+  return settings;
+}
+
+MaestroServoDriver::MaestroServoDriver(MaestroServoDriverOptions options,
+                                       std::unique_ptr<MaestroUsbPort> usb)
+    : options_(std::move(options)), usb_(std::move(usb)) {
+  if (!usb_) usb_ = std::make_unique<LibusbMaestroUsbPort>(options_.device);
+}
 
 MaestroServoDriver::~MaestroServoDriver() { Close(); }
 
@@ -127,6 +150,13 @@ bool MaestroServoDriver::Open(std::string* error) {
   if (errors & ~maestro::kErrorSerialTimeout) {
     spdlog::warn("Maestro on {}: error register at open: {}; cleared", options_.device,
                  maestro::DescribeErrors(errors));
+  }
+  // After the serial check, so that a Maestro that is not there gives the serial error, once.
+  usb_setup_ = ApplyMaestroUsbSettings(*usb_, options_.UsbSettings());
+  if (usb_setup_.ok) {
+    spdlog::info("{}", usb_setup_.message);
+  } else {
+    spdlog::warn("{}", usb_setup_.message);
   }
   spdlog::info("servo: {} open", Describe());
   return true;

@@ -1,8 +1,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
+#include "agent/servo/maestro_usb_port.hpp"
+#include "agent/servo/maestro_usb_setup.hpp"
 #include "agent/servo/servo_channel_mapping.hpp"
 #include "agent/servo/servo_driver.hpp"
 
@@ -17,37 +20,53 @@ struct MaestroServoDriverOptions {
   ServoChannelMapping pan{.channel = 0};
   ServoChannelMapping tilt{.channel = 1};
   int answer_timeout_ms = 500;  // [ms] how long Open waits for the answer to Get Errors
+  // [ms] the Maestro's serial timeout, set at Open over native USB: with no serial command
+  // for this long, it sends pan and tilt to their home positions. 10…60000, 10 ms steps.
+  int serial_timeout_ms = 500;
+  double pan_home_deg = 0;   // [deg] pan's home (ServoLimits::park_deg), through `pan`
+  double tilt_home_deg = 0;  // [deg] tilt's home, through `tilt`
 
   bool IsValid(std::string* error) const;
+
+  // The serial timeout and the two channels' homes [quarter-µs] for the Maestro's USB setup.
+  MaestroUsbSettings UsbSettings() const;
 };
 
 // A Pololu Maestro (Micro 6 or Mini 12/18/24) driven with the compact serial protocol:
 // Set Target (0x84) with the pulse width in quarter-µs, through ServoChannelMapping.
 //
-// Serial timeout — what happens if the agent dies. The Maestro's "Timeout" (Control Center,
-// Serial Settings tab; 0.01 s resolution, 0.01…655.35 s, 0 = off, off by default) raises a
-// serial timeout error (bit 5) when no valid serial command arrives for that long, and every
-// error sends each servo to its home position ("On startup or error": Go to / Off / Ignore,
-// per channel, Off by default). It is a persistent device setting: the serial protocol has no
-// command to read or write it (only native USB requests do, as Pololu's Control Center and
-// UscCmd use), so the agent does not set it. Configure it once per Maestro:
-//   Timeout = 0.5 s (agent watchdog or less), and for the pan and tilt channels
-//   "On startup or error" = Go to <the pulse of ServoLimits::park_deg> (1500 µs at 0 deg).
-// What Open verifies: the Maestro answers Get Errors (0xA1) in time, i.e. the port, serial
-// mode and baud rate are right. Get Errors also clears the register; a serial-timeout bit
-// found there is logged, as it shows the timeout is enabled and fired since the last run.
+// Serial timeout — what happens if the agent dies. The Maestro's serial timeout (0.01 s
+// steps, 0 = off, off by default) raises a serial timeout error (bit 5) when no valid serial
+// command arrives for that long, and every error sends each servo to its home position ("On
+// startup or error": Go to / Off / Ignore per channel, Off by default). Both are persistent
+// device settings that the serial protocol cannot reach, so Open sets them over the Maestro's
+// native USB interface (MaestroUsbPort, by default LibusbMaestroUsbPort; see
+// ApplyMaestroUsbSettings): timeout = serial_timeout_ms, and pan and tilt "Go to" the pulse
+// of their *_home_deg (park_deg). Parameters already right are not rewritten; written ones
+// are read back and compared, and the outcome is logged. If that fails (no permission: the
+// udev rule; a Maestro on TTL serial only, without USB; built without libusb), Open logs a
+// warning naming the cause, what to do and the values to set by hand in Pololu's Control
+// Center, and still succeeds: the serial Command Port does not need USB.
+// What Open verifies on the serial side: the Maestro answers Get Errors (0xA1) in time, i.e.
+// the port, serial mode and baud rate are right. Get Errors also clears the register; a
+// serial-timeout bit found there is logged, as it shows the timeout fired since the last run.
 // The agent must then send a command at least once per timeout period: the control loop
-// commands every frame and the watchdog parks (a command too) when the loop stalls.
+// commands every frame and the watchdog parks (a command too) when the loop stalls; hence
+// frame period < serial_timeout_ms ≤ watchdog (checked in AgentConfig::IsValid).
 //
 // Not thread-safe; one owner (the control loop) calls it.
 class MaestroServoDriver : public ServoDriver {
  public:
-  explicit MaestroServoDriver(MaestroServoDriverOptions options);
+  // `usb` reaches the Maestro's native USB interface; nullptr = LibusbMaestroUsbPort on
+  // options.device.
+  explicit MaestroServoDriver(MaestroServoDriverOptions options,
+                              std::unique_ptr<MaestroUsbPort> usb = nullptr);
   ~MaestroServoDriver() override;
   MaestroServoDriver(const MaestroServoDriver&) = delete;
   MaestroServoDriver& operator=(const MaestroServoDriver&) = delete;
 
-  // Opens and configures the port (raw, 8N1, baud), then checks the Maestro answers.
+  // Opens and configures the port (raw, 8N1, baud), checks the Maestro answers, then sets
+  // its serial timeout and home positions over USB (a failure there is only a warning).
   bool Open(std::string* error) override;
   bool SetAngle(ServoAxis axis, double deg, std::string* error) override;
   // Set Target 0 deg (the centre pulse) on both channels.
@@ -57,12 +76,17 @@ class MaestroServoDriver : public ServoDriver {
   // Reads and clears the Maestro's error register (Get Errors).
   bool GetErrors(std::uint16_t* errors, std::string* error);
 
+  // What the last Open's USB setup did (ok = set and verified).
+  const MaestroUsbSetupResult& usb_setup() const { return usb_setup_; }
+
  private:
   bool Fail(const std::string& reason, std::string* error) const;
   bool Write(const std::uint8_t* bytes, std::size_t count, std::string* error);
   void Close();
 
   MaestroServoDriverOptions options_;
+  std::unique_ptr<MaestroUsbPort> usb_;
+  MaestroUsbSetupResult usb_setup_;
   int fd_ = -1;
 };
 

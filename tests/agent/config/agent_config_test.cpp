@@ -26,7 +26,7 @@ class AgentConfigFileTest : public ::testing::Test {
     if (!dir_.empty()) std::filesystem::remove_all(dir_);
   }
   std::string Write(const std::string& text) {
-    const std::string path = dir_ + "/agent.json";
+    std::string path = dir_ + "/agent.json";
     std::ofstream(path) << text;
     return path;
   }
@@ -222,6 +222,55 @@ TEST(AgentConfigTest, ServoConfigTranslatesToMaestroOptions) {
   const MaestroServoDriverOptions options = servo.ToMaestroOptions();
   EXPECT_EQ(options.device, "/dev/ttyACM0");
   EXPECT_EQ(options.tilt.channel, 3);
+}
+
+TEST(AgentConfigTest, MaestroOptionsCarryTheTimeoutAndTheParkAngles) {
+  ServoConfig servo;
+  servo.backend = ServoBackend::kMaestro;
+  servo.maestro_timeout_ms = 250;
+  servo.pan.limits.park_deg = 5;
+  servo.tilt.limits.park_deg = -10;
+  const MaestroServoDriverOptions options = servo.ToMaestroOptions();
+  EXPECT_EQ(options.serial_timeout_ms, 250);
+  EXPECT_EQ(options.pan_home_deg, 5);
+  EXPECT_EQ(options.tilt_home_deg, -10);
+}
+
+TEST_F(AgentConfigFileTest, MaestroTimeoutIsRead) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadAgentConfig(Write(R"({"servo": {"maestro_timeout_ms": 200}})"), &config, &error))
+      << error;
+  EXPECT_EQ(config.servo.maestro_timeout_ms, 200);
+}
+
+TEST_F(AgentConfigFileTest, MaestroTimeoutOutOfRangeNamesTheKey) {
+  EXPECT_NE(LoadError(R"({"servo": {"maestro_timeout_ms": 0}})")
+                .find("servo.maestro_timeout_ms: must be 10…60000 ms"),
+            std::string::npos);
+  EXPECT_NE(LoadError(R"({"servo": {"maestro_timeout_ms": 255}})")
+                .find("servo.maestro_timeout_ms: must be 10…60000 ms in 10 ms steps"),
+            std::string::npos);
+}
+
+TEST_F(AgentConfigFileTest, MaestroTimeoutLongerThanTheWatchdogIsAnError) {
+  const std::string error = LoadError(
+      R"({"servo": {"backend": "maestro", "maestro_timeout_ms": 600}, "watchdog_ms": 500})");
+  EXPECT_NE(error.find("servo.maestro_timeout_ms: 600 ms must not exceed watchdog_ms (500 ms)"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(AgentConfigFileTest, MaestroTimeoutNotLongerThanAFrameIsAnError) {
+  const std::string error = LoadError(
+      R"({"camera": {"fps": 20}, "servo": {"backend": "maestro", "maestro_timeout_ms": 50}})");
+  EXPECT_NE(error.find("servo.maestro_timeout_ms: 50 ms must exceed a camera frame period"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(AgentConfigFileTest, MaestroTimeoutIsOnlyComparedWithTheWatchdogForTheMaestro) {
+  EXPECT_EQ(LoadError(R"({"servo": {"maestro_timeout_ms": 600}, "watchdog_ms": 100})"), "");
 }
 
 TEST(AgentConfigTest, CameraDeviceOverridesTheV4l2Default) {

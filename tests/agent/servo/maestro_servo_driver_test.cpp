@@ -12,6 +12,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/agent/support/fake_maestro_usb_port.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -85,11 +87,16 @@ std::vector<std::uint8_t> OpenAnswering(PseudoTerminal& pty, MaestroServoDriver&
 class MaestroServoDriverTest : public ::testing::Test {
  protected:
   void SetUp() override { ASSERT_TRUE(pty_.ok()) << "no pseudo-terminal available"; }
+  // A driver whose native USB interface is `usb_` (a Maestro at factory settings).
+  MaestroServoDriver Driver(const MaestroServoDriverOptions& options) {
+    return MaestroServoDriver(options, std::make_unique<FakeMaestroUsbPort>(&usb_));
+  }
   PseudoTerminal pty_;
+  FakeMaestroUsbPort::State usb_;
 };
 
 TEST_F(MaestroServoDriverTest, OpenSendsGetErrorsAndSucceedsOnAnAnswer) {
-  MaestroServoDriver driver(Options(pty_.path()));
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
   const auto sent = OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
@@ -98,7 +105,7 @@ TEST_F(MaestroServoDriverTest, OpenSendsGetErrorsAndSucceedsOnAnAnswer) {
 }
 
 TEST_F(MaestroServoDriverTest, OpenAcceptsAReportedSerialTimeout) {
-  MaestroServoDriver driver(Options(pty_.path()));
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
   OpenAnswering(pty_, driver, {0x20, 0x00}, &error, &opened);
@@ -108,7 +115,7 @@ TEST_F(MaestroServoDriverTest, OpenAcceptsAReportedSerialTimeout) {
 TEST_F(MaestroServoDriverTest, OpenFailsWhenNothingAnswers) {
   MaestroServoDriverOptions options = Options(pty_.path());
   options.answer_timeout_ms = 50;
-  MaestroServoDriver driver(options);
+  MaestroServoDriver driver = Driver(options);
   std::string error;
   EXPECT_FALSE(driver.Open(&error));
   EXPECT_NE(error.find(pty_.path()), std::string::npos) << error;
@@ -116,7 +123,7 @@ TEST_F(MaestroServoDriverTest, OpenFailsWhenNothingAnswers) {
 }
 
 TEST_F(MaestroServoDriverTest, SetAngleWritesTheExactSetTargetBytes) {
-  MaestroServoDriver driver(Options(pty_.path()));
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
   OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
@@ -127,7 +134,7 @@ TEST_F(MaestroServoDriverTest, SetAngleWritesTheExactSetTargetBytes) {
 }
 
 TEST_F(MaestroServoDriverTest, ParkSendsBothChannelsToTheirCentre) {
-  MaestroServoDriver driver(Options(pty_.path()));
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
   OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
@@ -138,13 +145,50 @@ TEST_F(MaestroServoDriverTest, ParkSendsBothChannelsToTheirCentre) {
 }
 
 TEST_F(MaestroServoDriverTest, NonFiniteAngleIsNotSent) {
-  MaestroServoDriver driver(Options(pty_.path()));
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
   OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
   ASSERT_TRUE(opened) << error;
   EXPECT_FALSE(driver.SetAngle(ServoAxis::kPan, std::numeric_limits<double>::quiet_NaN(), &error));
   EXPECT_TRUE(pty_.Read(1, 100).empty());
+}
+
+TEST_F(MaestroServoDriverTest, OpenSetsTheSerialTimeoutAndTheParkPulsesOverUsb) {
+  MaestroServoDriverOptions options = Options(pty_.path());
+  options.serial_timeout_ms = 300;
+  options.tilt_home_deg = -5;  // 1500 − 5 · 10 = 1450 µs = 5800 quarter-µs
+  MaestroServoDriver driver = Driver(options);
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
+  ASSERT_TRUE(opened) << error;
+  EXPECT_TRUE(driver.usb_setup().ok) << driver.usb_setup().message;
+  EXPECT_EQ(usb_.eeprom[6], 30);     // serial timeout [10 ms]
+  EXPECT_EQ(usb_.eeprom[30], 6000);  // channel 0 (pan) home [quarter-µs]
+  EXPECT_EQ(usb_.eeprom[75], 5800);  // channel 5 (tilt) home: 30 + 9 · 5
+}
+
+TEST_F(MaestroServoDriverTest, NoMaestroOnUsbIsAWarningAndTheDriverStillOpens) {
+  usb_.open_error = "no Maestro found on USB";
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
+  EXPECT_TRUE(opened) << error;
+  EXPECT_FALSE(driver.usb_setup().ok);
+  EXPECT_NE(driver.usb_setup().message.find("no Maestro found on USB"), std::string::npos)
+      << driver.usb_setup().message;
+  ASSERT_TRUE(driver.SetAngle(ServoAxis::kPan, 0, &error)) << error;
+  EXPECT_EQ(pty_.Read(4, 2000), (std::vector<std::uint8_t>{0x84, 0x00, 0x70, 0x2E}));
+}
+
+TEST_F(MaestroServoDriverTest, UsbIsNotTriedWhenTheSerialPortDoesNotAnswer) {
+  MaestroServoDriverOptions options = Options(pty_.path());
+  options.answer_timeout_ms = 50;
+  MaestroServoDriver driver = Driver(options);
+  EXPECT_FALSE(driver.Open(nullptr));
+  EXPECT_EQ(usb_.opens, 0);
 }
 
 TEST(MaestroServoDriverOpenTest, MissingPortIsNamedWithTheReason) {
@@ -177,6 +221,29 @@ TEST(MaestroServoDriverOptionsTest, NonStandardBaudIsInvalid) {
   MaestroServoDriverOptions options;
   options.baud = 250000;
   EXPECT_FALSE(options.IsValid(nullptr));
+}
+
+TEST(MaestroServoDriverOptionsTest, SerialTimeoutOutsideTenMillisecondStepsIsInvalid) {
+  MaestroServoDriverOptions options;
+  options.serial_timeout_ms = 305;
+  EXPECT_FALSE(options.IsValid(nullptr));
+  options.serial_timeout_ms = 0;
+  EXPECT_FALSE(options.IsValid(nullptr));
+}
+
+TEST(MaestroServoDriverOptionsTest, UsbSettingsMapTheHomeAnglesThroughTheChannels) {
+  MaestroServoDriverOptions options;
+  options.pan.channel = 2;
+  options.pan.us_per_deg = -10;
+  options.pan_home_deg = 10;  // 1500 − 100 = 1400 µs
+  options.tilt.channel = 3;
+  const MaestroUsbSettings settings = options.UsbSettings();
+  EXPECT_EQ(settings.serial_timeout_ms, 500);
+  ASSERT_EQ(settings.homes.size(), 2u);
+  EXPECT_EQ(settings.homes[0].channel, 2);
+  EXPECT_EQ(settings.homes[0].home_quarter_us, 5600);
+  EXPECT_EQ(settings.homes[1].channel, 3);
+  EXPECT_EQ(settings.homes[1].home_quarter_us, 6000);
 }
 
 TEST(MaestroServoDriverOptionsTest, SharedChannelIsInvalid) {
