@@ -16,6 +16,7 @@
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
+#include "kapfix/link/curve_key_file.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -47,6 +48,27 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   return o;
 }
 
+// "tcp://*:5555" → "tcp://127.0.0.1:5555": the same port, this machine only.
+std::string LoopbackAddress(const std::string& address) {
+  if (!address.starts_with("tcp://")) return address;
+  const auto colon = address.rfind(':');
+  if (colon == std::string::npos || colon < 6) return address;
+  return "tcp://127.0.0.1" + address.substr(colon);
+}
+
+// Applies the configured gain and exposure; a camera that refuses them still flies.
+void ApplyCameraSettings(const CameraConfig& camera, FrameSource& source) {
+  std::string why;
+  if (camera.gain_db && !source.SetGain(*camera.gain_db, &why)) {
+    spdlog::error("camera gain not set: {}", why);
+  }
+  if (camera.exposure_us && !source.SetExposure(*camera.exposure_us, &why)) {
+    spdlog::error("camera exposure not set: {}", why);
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<FrameSource> MakeCamera(const CameraConfig& camera) {
   if (camera.backend == CameraBackend::kV4l2) {
     return std::make_unique<V4l2FrameSource>(camera.ToV4l2Options());
@@ -60,8 +82,6 @@ std::unique_ptr<ServoDriver> MakeServoBackend(const ServoConfig& servo) {
   }
   return std::make_unique<Pca9685ServoDriver>(servo.ToPca9685Options());
 }
-
-}  // namespace
 
 AgentConfig BuiltInConfig(MotionKind motion) {
   AgentConfig config;
@@ -102,6 +122,27 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     throw std::runtime_error(error);
   }
   std::optional<CurveServerKeys> curve;
+  if (!config_.link.curve_secret_key_file.empty()) {
+    // Fresh install (the package's postinst makes the agent's keys and an empty list): no
+    // station can be authorised yet, so serve this machine only and say how to add one.
+    std::string why;
+    const auto stations =
+        kapfix::link::ReadPublicKeyLines(config_.link.curve_authorized_keys_file, &why);
+    if (stations && stations->empty()) {
+      spdlog::warn(
+          "link: no station key in {} yet: serving this machine only (127.0.0.1). To fly from "
+          "a station: kapfix-keygen laptop (on the station), append laptop.pub's line to {}, "
+          "then systemctl restart kapfix-agent; give the station {}",
+          config_.link.curve_authorized_keys_file, config_.link.curve_authorized_keys_file,
+          std::filesystem::path(config_.link.curve_secret_key_file)
+              .replace_extension(".pub")
+              .string());
+      config_.link.command_address = LoopbackAddress(config_.link.command_address);
+      config_.link.stream_address = LoopbackAddress(config_.link.stream_address);
+      config_.link.curve_secret_key_file.clear();
+      config_.link.curve_authorized_keys_file.clear();
+    }
+  }
   if (!config_.link.curve_secret_key_file.empty()) {
     curve = ReadCurveServerKeys(config_.link.curve_secret_key_file,
                                 config_.link.curve_authorized_keys_file, &error);
@@ -161,15 +202,26 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   predictive.predictor.lead_frames = pipeline.actuation_delay_frames;
 
   servos_ = std::make_unique<LimitedServoDriver>(std::move(backend), config_.servo.pan.limits,
-                                                 config_.servo.tilt.limits, clock);
-  if (!source_->Open(&error)) throw std::runtime_error(error);
-  if (config_.camera.gain_db && !source_->SetGain(*config_.camera.gain_db, &error)) {
-    throw std::runtime_error(error);
+                                                 config_.servo.tilt.limits, clock, 1.0 / fps);
+  // Start-up waits for hardware: a device that is not there yet is said once and retried
+  // with back-off by the pipeline, rather than ending the agent (issue 10).
+  const CameraConfig configured_camera = config_.camera;
+  pipeline.on_camera_open = [configured_camera](FrameSource& source) {
+    ApplyCameraSettings(configured_camera, source);
+  };
+  if (source_->Open(&error)) {
+    ApplyCameraSettings(configured_camera, *source_);
+  } else {
+    pipeline.camera_open = false;
+    spdlog::warn("camera: {}", error);
   }
-  if (config_.camera.exposure_us && !source_->SetExposure(*config_.camera.exposure_us, &error)) {
-    throw std::runtime_error(error);
+  if (!servos_->Open(&error)) {
+    pipeline.servos_open = false;
+    spdlog::warn("servos: {}", error);
   }
-  if (!servos_->Open(&error)) throw std::runtime_error(error);
+  if (simulated_) pipeline.park_wait = [] {};  // simulated time: no wall-clock wait
+  notifier_ = std::make_unique<SystemdNotifier>();
+  pipeline.on_alive = [notifier = notifier_.get()] { notifier->Alive(); };
 
   StreamPublisherOptions publisher_options;
   publisher_options.bind_endpoint = config_.link.stream_address;
@@ -218,6 +270,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
 
   std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
   if (options_.keep_telemetry) observers.push_back(&telemetry_);
+  const bool pipeline_camera_open = pipeline.camera_open;
+  const bool pipeline_servos_open = pipeline.servos_open;
   pipeline_ = std::make_unique<Pipeline>(*source_, *servos_, *modes_, std::move(observers),
                                          std::move(pipeline));
 
@@ -248,6 +302,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   server_ = std::make_unique<CommandServer>(*executor_, server_options);
   stream_endpoint_ = publisher_->Start();
   command_endpoint_ = server_->Start();
+  notifier_->Ready("commands on " + command_endpoint_ + "; camera " +
+                   (pipeline_camera_open ? "open" : "waiting") + ", servos " +
+                   (pipeline_servos_open ? "open" : "waiting"));
 }
 
 Agent::~Agent() {
@@ -264,7 +321,10 @@ PipelineStats Agent::Run() {
   return pipeline_->Run();
 }
 
-void Agent::Stop() { pipeline_->Stop(); }
+void Agent::Stop() {
+  notifier_->Stopping();
+  pipeline_->Stop();
+}
 
 std::string Agent::Describe() const {
   return source_->Describe() + "; " + servos_->Describe() + "; controller " +

@@ -20,6 +20,7 @@
 #include "agent/pipeline/telemetry_recorder.hpp"
 #include "agent/server/command_server.hpp"
 #include "agent/server/stream_publisher.hpp"
+#include "agent/service/systemd_notifier.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/sim/simulated_platform.hpp"
 
@@ -49,6 +50,10 @@ struct AgentOptions {
 // default kp 0.8 leaves 5.2 px RMS on the kite flight of 900 frames where 1.0 leaves 2.9).
 AgentConfig BuiltInConfig(MotionKind motion);
 
+// The real camera and servo backend a config names (not "sim"); not opened.
+std::unique_ptr<FrameSource> MakeCamera(const CameraConfig& camera);
+std::unique_ptr<ServoDriver> MakeServoBackend(const ServoConfig& servo);
+
 // Without CurveZMQ keys the link may only listen on this machine (loopback, ipc, inproc)
 // unless `insecure`; false with the reason otherwise (issue 5).
 bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error);
@@ -70,9 +75,10 @@ bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error
 // deterministic. Hardware runs free on the wall clock.
 class Agent {
  public:
-  // Opens camera, servos and the link's sockets. Throws std::runtime_error with a one-line
-  // reason (an unreadable scene, a device that does not open, an invalid config, an address
-  // already in use).
+  // Opens camera, servos and the link's sockets. A camera or servo driver that does not open
+  // is logged and waited for (the pipeline retries it with back-off). Throws
+  // std::runtime_error with a one-line reason for what waiting cannot fix (an unreadable
+  // scene, an invalid config, unreadable keys, an address already in use).
   Agent(AgentConfig config, AgentOptions options);
   ~Agent();
   Agent(const Agent&) = delete;
@@ -100,6 +106,7 @@ class Agent {
   std::shared_ptr<SimulatedPlatform> platform_;
   std::unique_ptr<FrameSource> source_;
   std::unique_ptr<LimitedServoDriver> servos_;
+  std::unique_ptr<SystemdNotifier> notifier_;
   // The link and the observers outlive the pipeline and the command server that use them
   // (members are destroyed in reverse order).
   std::unique_ptr<StreamPublisher> publisher_;

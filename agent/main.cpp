@@ -18,7 +18,9 @@
 
 #include "agent/agent.hpp"
 #include "agent/config/agent_config.hpp"
+#include "agent/config/device_spec.hpp"
 #include "agent/pipeline/flight_report.hpp"
+#include "agent/preflight/preflight.hpp"
 
 namespace {
 
@@ -86,6 +88,18 @@ int Main(int argc, char** argv) {
                "let the link listen beyond this machine without CurveZMQ keys (not for a field)");
   app.add_flag("--max-speed", max_speed,
                "simulation: frames as fast as the machine allows, not at the camera's rate");
+  // Field deployment (issue 10): one device from the command line, and checks without flying.
+  std::string camera_spec;
+  std::string servos_spec;
+  bool preflight = false;
+  app.add_option("--camera", camera_spec,
+                 "camera, overriding the config: sim, v4l2:/dev/video0, aravis[:ID-or-address]");
+  app.add_option("--servos", servos_spec,
+                 "servo controller, overriding the config: sim, maestro:/dev/kapfix-maestro, "
+                 "pca9685:/dev/i2c-1[@0x40]");
+  app.add_flag("--preflight", preflight,
+               "check config, keys, devices, photo folder and clock; print PASS/FAIL lines; exit "
+               "1 if any fails");
   CLI11_PARSE(app, argc, argv);
 
   AgentConfig config;
@@ -104,6 +118,23 @@ int Main(int argc, char** argv) {
   if (!stream_address.empty()) config.link.stream_address = stream_address;
   if (!photos_dir.empty()) config.photos.dir = photos_dir;
   if (!state_dir.empty()) config.state_dir = state_dir;
+  {
+    std::string error;
+    if (!camera_spec.empty() && !ApplyCameraSpec(camera_spec, &config.camera, &error)) {
+      return Fail(error, 2);
+    }
+    if (!servos_spec.empty() && !ApplyServoSpec(servos_spec, &config.servo, &error)) {
+      return Fail(error, 2);
+    }
+  }
+  if (preflight) {
+    bool all_pass = true;
+    for (const PreflightCheck& check : RunPreflight(config, {.simulate = force_sim})) {
+      std::printf("%s\n", check.Line().c_str());
+      all_pass = all_pass && check.pass;
+    }
+    return all_pass ? 0 : 1;
+  }
 
   AgentOptions options;
   options.simulate = force_sim;

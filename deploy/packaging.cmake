@@ -3,7 +3,10 @@
 #                   configuration (/etc/kapfix/agent.json, from resources/kite.json) and the
 #                   examples; postinst creates the service's user (deploy/debian/agent/)
 #   kapfix-station  the operator's laptop: kapfix-station, kapfix-ctl, kapfix-analyze
+# deploy/check-agent-deb.sh installs the agent's into a clean Debian root and checks it.
 # Build them with:  cmake --build build/default && cpack --config build/default/CPackConfig.cmake
+# Release .debs: configure with -DKAPFIX_REQUIRE_HARDWARE=ON (agent/CMakeLists.txt), so that a
+# host without Aravis, libusb or libsystemd fails instead of packaging a lesser agent.
 #
 # Included at the end of the top-level CMakeLists.txt, after every add_subdirectory, so that
 # the executables' targets exist if they are built at all; each install() is guarded, so the
@@ -26,7 +29,11 @@ install(FILES ${PROJECT_SOURCE_DIR}/deploy/kapfix-agent.service
 # Lets the agent (group plugdev) open a Maestro's native USB interface to set its serial
 # timeout and home positions (agent/servo/libusb_maestro_usb_port.hpp).
 install(FILES ${PROJECT_SOURCE_DIR}/deploy/udev/99-kapfix-maestro.rules
+              ${PROJECT_SOURCE_DIR}/deploy/udev/99-kapfix-usb3vision.rules
         DESTINATION /lib/udev/rules.d COMPONENT agent)
+# /dev/i2c-N for PCA9685 boards needs i2c-dev, loaded at every boot.
+install(FILES ${PROJECT_SOURCE_DIR}/deploy/kapfix-i2c.conf
+        DESTINATION /usr/lib/modules-load.d RENAME kapfix.conf COMPONENT agent)
 # The kite rig is the default configuration; the operator edits it (a conffile: upgrades keep
 # local changes).
 install(FILES ${PROJECT_SOURCE_DIR}/resources/kite.json
@@ -74,7 +81,11 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)  # Depends: from the linked libraries (dp
 set(CPACK_DEBIAN_AGENT_PACKAGE_NAME "kapfix-agent")
 set(CPACK_COMPONENT_AGENT_DESCRIPTION
     "kapfix agent: camera fixation on a kite line or a boat, headless, with its systemd unit")
-set(CPACK_DEBIAN_AGENT_PACKAGE_DEPENDS "adduser")
+# adduser for postinst; udev for the device rules. The libraries come from dpkg-shlibdeps
+# (no Qt: the agent does not link it; deploy/check-agent-deb.sh checks).
+set(CPACK_DEBIAN_AGENT_PACKAGE_DEPENDS "adduser, udev")
+# The scene photos `kapfix-agent --sim` flies over (and its --preflight checks).
+set(CPACK_DEBIAN_AGENT_PACKAGE_RECOMMENDS "opencv-doc")
 set(CPACK_DEBIAN_AGENT_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/deploy/debian/agent/conffiles
     ${PROJECT_SOURCE_DIR}/deploy/debian/agent/postinst

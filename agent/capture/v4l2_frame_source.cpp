@@ -9,8 +9,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 namespace kapfix::agent {
 namespace {
@@ -46,6 +48,9 @@ bool V4l2FrameSourceOptions::IsValid(std::string* error) const {
   if (!std::isfinite(fps) || fps <= 0 || fps > 1000) {
     return fail("V4L2 fps must be in (0, 1000], got " + std::to_string(fps));
   }
+  if (grab_timeout_ms < 1 || grab_timeout_ms > 60000) {
+    return fail("V4L2 grab_timeout_ms must be 1…60000, got " + std::to_string(grab_timeout_ms));
+  }
   if (!fourcc.empty() && fourcc.size() != 4) {
     return fail("V4L2 fourcc must be 4 characters (e.g. MJPG), got '" + fourcc + "'");
   }
@@ -79,6 +84,10 @@ bool V4l2FrameSource::Open(std::string* error) {
   if (::access(path.c_str(), R_OK | W_OK) != 0) {
     return Fail("permission denied; is the agent's user in group video?", error);
   }
+  // OpenCV reads this once, at its first V4L2 capture: set it before any open (0 = do not
+  // replace an operator's own setting).
+  const int timeout_s = std::max(1, (options_.grab_timeout_ms + 999) / 1000);
+  ::setenv("OPENCV_VIDEOIO_V4L_SELECT_TIMEOUT", std::to_string(timeout_s).c_str(), 0);
   if (!capture_.open(path, cv::CAP_V4L2) || !capture_.isOpened()) {
     capture_.release();
     return Fail("OpenCV's V4L2 backend cannot open it (not a capture device, or busy?)", error);
@@ -105,10 +114,27 @@ bool V4l2FrameSource::Open(std::string* error) {
 bool V4l2FrameSource::Grab(CapturedFrame* frame, std::string* error) {
   if (!capture_.isOpened()) return Fail("not open", error);
   cv::Mat image;
-  if (!capture_.read(image) || image.empty()) {
-    return Fail("lost (no frame; unplugged or stalled)", error);
+  const std::int64_t deadline = NowUs() + std::int64_t{options_.grab_timeout_ms} * 1000;
+  // A read interrupted by a signal (EINTR) fails at once: try again until the deadline.
+  while (!capture_.read(image) || image.empty()) {
+    if (NowUs() >= deadline || !capture_.isOpened()) {
+      return Fail("lost (no frame within " + std::to_string(options_.grab_timeout_ms) +
+                      " ms; unplugged or stalled)",
+                  error);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));  // no busy loop when it fails fast
   }
   const std::int64_t now = NowUs();
+  // The driver's timestamp of the buffer [ms], CLOCK_MONOTONIC for UVC and most drivers.
+  const auto driver_us = static_cast<std::int64_t>(capture_.get(cv::CAP_PROP_POS_MSEC) * 1000.0);
+  const bool driver_stamp = driver_us > 0 && driver_us <= now && now - driver_us < 1'000'000;
+  if (stamp_source_logged_ != (driver_stamp ? 1 : 2)) {
+    stamp_source_logged_ = driver_stamp ? 1 : 2;
+    spdlog::info("V4L2 camera {}: frames stamped {}", DevicePath(),
+                 driver_stamp ? "by the driver (buffer timestamp, monotonic clock)"
+                              : "on arrival (the driver's timestamp is not on the monotonic "
+                                "clock)");
+  }
   if (image.type() == CV_8UC1) {
     cv::cvtColor(image, frame->image, cv::COLOR_GRAY2BGR);
   } else if (image.type() == CV_8UC3) {
@@ -117,7 +143,7 @@ bool V4l2FrameSource::Grab(CapturedFrame* frame, std::string* error) {
     return Fail("unsupported frame type " + std::to_string(image.type()) + " (want 8-bit BGR)",
                 error);
   }
-  frame->capture_time_us = now;
+  frame->capture_time_us = driver_stamp ? driver_us : now;
   frame->index = next_index_++;
   return true;
 }

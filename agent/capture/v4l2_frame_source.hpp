@@ -13,6 +13,11 @@ struct V4l2FrameSourceOptions {
   int height = 480;                    // [px]
   double fps = 30;                     // [frames/s] requested
   std::string fourcc;                  // "" = driver default, else e.g. "MJPG" or "YUYV"
+  // [ms] longest one Grab waits for a frame (a stalled camera is then reported lost and
+  // reopened, instead of OpenCV's 10 s select()). OpenCV's V4L2 backend takes its select()
+  // timeout in whole seconds from OPENCV_VIDEOIO_V4L_SELECT_TIMEOUT, read once per process:
+  // Open sets it (unless the environment already does) to this, rounded up to seconds.
+  int grab_timeout_ms = 1000;
 
   bool IsValid(std::string* error) const;
 };
@@ -29,6 +34,12 @@ struct V4l2FrameSourceOptions {
 // the value is converted. SetGain writes V4L2_CID_GAIN, whose unit the driver defines (UVC
 // webcams: a 0…255 index, not dB); the value is passed as it is — read the camera's range
 // with `v4l2-ctl -d DEV --list-ctrls`.
+//
+// Grab retries a failed read (a signal interrupting OpenCV's select() or ioctl, EINTR) until
+// grab_timeout_ms, and only then reports the camera lost. Frames carry the driver's buffer
+// timestamp (CLOCK_MONOTONIC, the clock of std::chrono::steady_clock on Linux, through
+// CAP_PROP_POS_MSEC) when it is plausible (not in the future, under a second old), else the
+// time of arrival; which one is said once in the log.
 class V4l2FrameSource : public FrameSource {
  public:
   explicit V4l2FrameSource(V4l2FrameSourceOptions options);
@@ -48,6 +59,7 @@ class V4l2FrameSource : public FrameSource {
   V4l2FrameSourceOptions options_;
   cv::VideoCapture capture_;
   std::uint64_t next_index_ = 0;
+  int stamp_source_logged_ = 0;  // 0 none yet, 1 driver, 2 arrival
 };
 
 }  // namespace kapfix::agent

@@ -89,6 +89,8 @@ MaestroServoDriverOptions ServoConfig::ToMaestroOptions() const {
   o.serial_timeout_ms = maestro_timeout_ms;
   o.pan_home_deg = pan.limits.park_deg;
   o.tilt_home_deg = tilt.limits.park_deg;
+  o.pan_max_rate_deg_per_s = pan.limits.max_rate_deg_per_s;
+  o.tilt_max_rate_deg_per_s = tilt.limits.max_rate_deg_per_s;
   return o;
 }
 

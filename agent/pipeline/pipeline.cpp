@@ -27,7 +27,9 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
       observers_(std::move(observers)),
       options_(std::move(options)),
       commander_(servos_, servo_mutex_,
-                 ServoCommanderOptions{options_.retry_initial_ms, options_.retry_max_ms}) {}
+                 ServoCommanderOptions{options_.retry_initial_ms, options_.retry_max_ms}) {
+  if (!options_.servos_open) commander_.StartOut();
+}
 
 PipelineStats Pipeline::Run() {
   PipelineStats stats;
@@ -61,7 +63,16 @@ PipelineStats Pipeline::Run() {
   if (stats.error.empty()) stats.error = capture_error;
   std::string error;
   std::lock_guard lock(servo_mutex_);
-  if (!servos_.Park(&error)) spdlog::warn("could not park the servos at the end: {}", error);
+  if (!servos_.placed()) return stats;  // never moved: nothing to park
+  const double period_s = options_.default_frame_period_s;
+  const std::function<void()> wait = options_.park_wait ? options_.park_wait : [period_s] {
+    std::this_thread::sleep_for(std::chrono::duration<double>(period_s));
+  };
+  if (servos_.ParkAndWait(wait, &error)) {
+    spdlog::info("servos parked");
+  } else {
+    spdlog::warn("could not park the servos at the end: {}", error);
+  }
   return stats;
 }
 
@@ -70,19 +81,28 @@ void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
   camera_changes_.push_back(std::move(change));
 }
 
-bool Pipeline::Reconnect(const std::string& reason) {
-  spdlog::error("camera lost: {}; the servos hold, reconnecting", reason);
+bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
+  if (at_start) {
+    spdlog::warn(
+        "camera not there: {}; waiting for it (retrying with back-off, the servos are "
+        "not moved until it delivers a frame)",
+        reason);
+  } else {
+    spdlog::error("camera lost: {}; the servos hold, reconnecting", reason);
+  }
   const auto lost = std::chrono::steady_clock::now();
   int wait_ms = options_.retry_initial_ms;
   for (int attempt = 1; !stop_; ++attempt) {
     // Sleep in short steps so that Stop() is not held up by a long back-off.
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
     while (!stop_ && std::chrono::steady_clock::now() < until) {
+      if (options_.on_alive) options_.on_alive();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     if (stop_) break;
     std::string error;
     if (source_.Open(&error)) {
+      if (options_.on_camera_open) options_.on_camera_open(source_);
       spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0, attempt,
                    source_.Describe());
       return true;
@@ -98,6 +118,15 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
   // A reopened camera numbers its frames from 0 again; the flight's numbering must go on.
   std::uint64_t index_base = 0;
   std::optional<std::uint64_t> last_index;
+  if (!options_.camera_open) {
+    std::string error;
+    if (source_.Open(&error)) {
+      if (options_.on_camera_open) options_.on_camera_open(source_);
+    } else if (!Reconnect(error, true)) {
+      slot_.Close();
+      return;
+    }
+  }
   while (!stop_) {
     std::vector<std::function<void(FrameSource&)>> changes;
     {
@@ -115,7 +144,7 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
         break;
       }
       on_outage();
-      if (!Reconnect(error)) break;
+      if (!Reconnect(error, false)) break;
       ++stats->camera_reconnects;
       if (last_index) index_base = *last_index + 1;
       continue;
@@ -186,6 +215,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     }
     for (StepObserver* observer : observers_) observer->OnStep(*frame, outcome, record);
     kick();
+    if (options_.on_alive) options_.on_alive();
     ++stats->processed;
     slot_.MarkDone(frame->index);
     if (options_.frames > 0 && stats->processed >= options_.frames) break;

@@ -41,6 +41,18 @@ struct PipelineOptions {
   bool reconnect_camera = true;
   int retry_initial_ms = 100;  // [ms]
   int retry_max_ms = 5000;     // [ms]
+  // Start-up that waits for hardware: a camera or servo driver that did not open is retried
+  // with the same back-off from the start (said in the log), rather than ending the run. The
+  // servos are not moved before a camera frame arrives and the driver is open.
+  bool camera_open = true;
+  bool servos_open = true;
+  // Runs on the capture thread after every successful (re)open of the camera (gain, exposure).
+  std::function<void(FrameSource&)> on_camera_open;
+  // Called on every control step and every reconnect wait: the service manager's watchdog.
+  std::function<void()> on_alive;
+  // Between the steps of the final park (one frame period at the rate limit each); default:
+  // sleep default_frame_period_s. Simulated time needs no wait.
+  std::function<void()> park_wait;
   // Simulation truth for telemetry: the view's residual offset of a frame, by index.
   std::function<std::optional<cv::Point2d>(std::uint64_t)> view_offset;
 };
@@ -64,12 +76,14 @@ struct PipelineStats {
 // step is recorded. The pipeline does not know which camera or servos it drives.
 class Pipeline {
  public:
-  // The driver must be open. Source, driver, processor and recorder must outlive the pipeline.
+  // The source and driver need not be open (PipelineOptions camera_open, servos_open). Source,
+  // driver, processor and recorder must outlive the pipeline.
   Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcessor& processor,
            std::vector<StepObserver*> observers, PipelineOptions options);
 
-  // Runs until options.frames are processed, Stop(), or a camera failure; then parks the
-  // servos. Blocks; call once.
+  // Runs until options.frames are processed, Stop(), or a camera failure; then slews the
+  // servos to park at the rate limit and waits until they are there (if they were ever
+  // moved). Blocks; call once.
   PipelineStats Run();
   // From any thread: ends Run soon.
   void Stop() { stop_ = true; }
@@ -80,7 +94,7 @@ class Pipeline {
  private:
   void CaptureThread(PipelineStats* stats, const std::function<void()>& on_outage);
   // Retries Open with back-off until it succeeds (true) or Stop() (false).
-  bool Reconnect(const std::string& reason);
+  bool Reconnect(const std::string& reason, bool at_start);
   void ControlThread(PipelineStats* stats, const std::function<void()>& kick);
   ServoTargets SeenThrough(std::uint64_t index) const;
 

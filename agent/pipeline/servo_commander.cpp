@@ -10,13 +10,24 @@ namespace kapfix::agent {
 
 ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
                                ServoCommanderOptions options, MonotonicClockUs clock)
-    : servos_(servos), mutex_(mutex), options_(options), clock_(std::move(clock)) {}
+    : servos_(servos),
+      mutex_(mutex),
+      options_(options),
+      clock_(std::move(clock)),
+      held_{servos.angle(ServoAxis::kPan), servos.angle(ServoAxis::kTilt)} {}
+
+ServoCommander::~ServoCommander() {
+  if (reopen_thread_.joinable()) reopen_thread_.join();
+}
 
 ServoTargets ServoCommander::Command(const ServoTargets& targets) {
-  const std::lock_guard lock(mutex_);
   const std::int64_t now_us = clock_();
-  if (out_) RetryIfDue(now_us);
-  if (!out_) {
+  if (out_) {
+    RetryIfDue(now_us);
+    if (out_) return held_;
+  }
+  const std::lock_guard lock(mutex_);
+  {
     std::string error;
     for (const auto& [axis, deg] : {std::pair{ServoAxis::kPan, targets.pan_deg},
                                     std::pair{ServoAxis::kTilt, targets.tilt_deg}}) {
@@ -29,7 +40,19 @@ ServoTargets ServoCommander::Command(const ServoTargets& targets) {
       }
     }
   }
-  return {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
+  held_ = {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
+  return held_;
+}
+
+void ServoCommander::StartOut() {
+  out_ = true;
+  out_since_us_ = clock_();
+  wait_ms_ = options_.retry_initial_ms;
+  next_retry_us_ = out_since_us_;  // at the first command, i.e. with the first camera frame
+  attempts_ = 0;
+  spdlog::warn(
+      "servo driver not open at start: opening it with the first camera frame, then "
+      "retrying with back-off");
 }
 
 void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
@@ -43,19 +66,46 @@ void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
 }
 
 void ServoCommander::RetryIfDue(std::int64_t now_us) {
+  if (reopen_running_) {
+    if (reopen_done_.load(std::memory_order_acquire)) FinishReopen(now_us);
+    return;
+  }
   if (now_us < next_retry_us_) return;
   ++attempts_;
-  std::string error;
-  if (servos_.Reopen(&error)) {
+  reopen_running_ = true;
+  reopen_done_.store(false);
+  auto reopen = [this] {
+    const std::lock_guard lock(mutex_);
+    std::string error;
+    reopen_ok_ = servos_.Reopen(&error);
+    reopen_error_ = error;
+    reopen_done_.store(true, std::memory_order_release);
+  };
+  if (options_.reopen_in_background) {
+    reopen_thread_ = std::thread(reopen);
+  } else {
+    reopen();
+    FinishReopen(now_us);
+  }
+}
+
+void ServoCommander::FinishReopen(std::int64_t now_us) {
+  if (reopen_thread_.joinable()) reopen_thread_.join();
+  reopen_running_ = false;
+  if (reopen_ok_) {
     out_ = false;
     ++counters_.recoveries;
+    {
+      const std::lock_guard lock(mutex_);
+      held_ = {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
+    }
     spdlog::info("servo driver back after {:.1f} s ({} attempts): {}",
                  static_cast<double>(now_us - out_since_us_) * 1e-6, attempts_, servos_.Describe());
     return;
   }
   wait_ms_ = std::min(2 * wait_ms_, options_.retry_max_ms);
   next_retry_us_ = now_us + std::int64_t{wait_ms_} * 1000;
-  spdlog::warn("servo driver reopen attempt {} failed: {}; next in {} ms", attempts_, error,
+  spdlog::warn("servo driver reopen attempt {} failed: {}; next in {} ms", attempts_, reopen_error_,
                wait_ms_);
 }
 

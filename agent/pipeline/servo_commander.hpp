@@ -7,8 +7,11 @@
 // and when the driver is back, fixation goes on. A non-finite target is a refusal (counted,
 // nothing moves), not a driver failure.
 
+#include <atomic>
 #include <cstdint>
 #include <mutex>
+#include <string>
+#include <thread>
 
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/fixation/fixation_loop.hpp"
@@ -18,6 +21,10 @@ namespace kapfix::agent {
 struct ServoCommanderOptions {
   int retry_initial_ms = 100;  // [ms] first reopen this long after the failure
   int retry_max_ms = 5000;     // [ms] doubling up to this
+  // Reopen on a thread of its own, so that a slow one (a Maestro that does not answer: up to
+  // its answer timeout; the USB setup) never holds up the control loop. Off: on the caller's
+  // thread, within Command (deterministic, for tests of the back-off).
+  bool reopen_in_background = true;
 };
 
 class ServoCommander {
@@ -31,10 +38,18 @@ class ServoCommander {
   // `mutex` guards `servos` against the watchdog's Park; both must outlive this.
   ServoCommander(LimitedServoDriver& servos, std::mutex& mutex, ServoCommanderOptions options,
                  MonotonicClockUs clock = SteadyClockNowUs);
+  ~ServoCommander();  // waits for a reopen in progress
+  ServoCommander(const ServoCommander&) = delete;
+  ServoCommander& operator=(const ServoCommander&) = delete;
 
-  // Sends `targets` to both axes; while the driver is out, sends nothing and reopens it when
-  // the back-off allows. Returns the angles the servos were last given [deg].
+  // Sends `targets` to both axes; while the driver is out, sends nothing, takes no lock and
+  // starts a reopen when the back-off allows (its outcome is taken up by a later call).
+  // Returns the angles the servos were last given [deg].
   ServoTargets Command(const ServoTargets& targets);
+
+  // The driver did not open at start: the first Command opens it (then with back-off), and
+  // nothing moves until it is open.
+  void StartOut();
 
   bool out() const { return out_; }
   Counters counters() const { return counters_; }
@@ -42,6 +57,7 @@ class ServoCommander {
  private:
   void Fail(const std::string& error, std::int64_t now_us);
   void RetryIfDue(std::int64_t now_us);
+  void FinishReopen(std::int64_t now_us);
 
   LimitedServoDriver& servos_;
   std::mutex& mutex_;
@@ -53,6 +69,13 @@ class ServoCommander {
   int wait_ms_ = 0;
   int attempts_ = 0;
   Counters counters_;
+  ServoTargets held_;
+  // The reopen in progress: written by its thread before reopen_done_ is set.
+  std::thread reopen_thread_;
+  bool reopen_running_ = false;
+  std::atomic<bool> reopen_done_{false};
+  bool reopen_ok_ = false;
+  std::string reopen_error_;
 };
 
 }  // namespace kapfix::agent

@@ -40,6 +40,15 @@ bool FakeServoDriver::Park(std::string* error) {
   return true;
 }
 
+bool FakeServoDriver::ReadAngle(ServoAxis axis, double* deg, std::string* error) {
+  if (!open_ || !readable_) {
+    if (error) *error = "fake servos: position not readable";
+    return false;
+  }
+  *deg = angle(axis);
+  return true;
+}
+
 double FakeServoDriver::angle(ServoAxis axis) const {
   return axis == ServoAxis::kPan ? pan_deg_ : tilt_deg_;
 }

@@ -2,8 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace kapfix::agent {
@@ -22,13 +24,18 @@ std::int64_t SteadyClockNowUs() {
 }
 
 LimitedServoDriver::LimitedServoDriver(std::unique_ptr<ServoDriver> backend, ServoLimits pan,
-                                       ServoLimits tilt, MonotonicClockUs clock)
+                                       ServoLimits tilt, MonotonicClockUs clock,
+                                       double frame_period_s)
     : backend_(std::move(backend)),
       clock_(std::move(clock)),
+      frame_period_s_(frame_period_s),
       pan_{ServoLimiter(pan), pan.park_deg},
       tilt_{ServoLimiter(tilt), tilt.park_deg} {
   if (!backend_) throw std::invalid_argument("LimitedServoDriver: no backend");
   if (!clock_) throw std::invalid_argument("LimitedServoDriver: no clock");
+  if (!std::isfinite(frame_period_s_) || frame_period_s_ <= 0) {
+    throw std::invalid_argument("LimitedServoDriver: frame period must be > 0 s");
+  }
 }
 
 bool LimitedServoDriver::Open(std::string* error) {
@@ -36,9 +43,15 @@ bool LimitedServoDriver::Open(std::string* error) {
   if (!backend_->Open(error)) return false;
   for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
     AxisState& s = State(axis);
-    const double park = s.limiter.limits().park_deg;
-    if (!backend_->SetAngle(axis, park, error)) return false;
-    s.angle_deg = park;
+    s.angle_deg = s.limiter.limits().park_deg;
+    s.placed = false;
+    double read = 0;
+    std::string why;
+    // A device that tells where the servo stands: slew from there, no unlimited first move.
+    if (backend_->ReadAngle(axis, &read, &why) && std::isfinite(read)) {
+      s.angle_deg = read;
+      s.placed = true;
+    }
     s.commanded_at_us = clock_();
   }
   open_ = true;
@@ -50,21 +63,46 @@ bool LimitedServoDriver::Reopen(std::string* error) {
   if (!backend_->Open(error)) return false;
   for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
     AxisState& s = State(axis);
-    if (!backend_->SetAngle(axis, s.angle_deg, error)) return false;
+    double read = 0;
+    std::string why;
+    if (backend_->ReadAngle(axis, &read, &why) && std::isfinite(read)) {
+      if (read != s.angle_deg) {
+        spdlog::info(
+            "servo {}: at {:g} deg after the outage (last commanded {:g} deg); slewing "
+            "from there at the rate limit",
+            ToString(axis), read, s.angle_deg);
+      }
+      s.angle_deg = read;  // outside the limits: ServoLimiter takes the nearest limit
+      s.placed = true;
+    }
     s.commanded_at_us = clock_();
   }
   open_ = true;
   return true;
 }
 
-bool LimitedServoDriver::Command(ServoAxis axis, double target_deg, std::string* error) {
+bool LimitedServoDriver::Command(ServoAxis axis, double target_deg, double dt_s,
+                                 std::string* error) {
   if (!open_) {
     if (error) *error = Describe() + ": not open";
     return false;
   }
   AxisState& s = State(axis);
   const std::int64_t now = clock_();
-  const double dt_s = static_cast<double>(now - s.commanded_at_us) * 1e-6;
+  if (!s.placed) {
+    // Where the servo stands is unknown: the first command after Open goes to park.
+    const double park = s.limiter.limits().park_deg;
+    if (!backend_->SetAngle(axis, park, error)) return false;
+    spdlog::info("servo {}: first command since open: to park {:g} deg", ToString(axis), park);
+    s.angle_deg = park;
+    s.commanded_at_us = now;
+    s.placed = true;
+    return true;
+  }
+  if (std::isnan(dt_s)) dt_s = static_cast<double>(now - s.commanded_at_us) * 1e-6;
+  // The hard step bound: however long since the last command, one step covers at most one
+  // frame period at the rate limit.
+  dt_s = std::min(dt_s, frame_period_s_);
   const double limited = s.limiter.Limit(target_deg, s.angle_deg, dt_s);
   if (limited != target_deg) {
     ++limited_;
@@ -85,15 +123,20 @@ bool LimitedServoDriver::SetAngle(ServoAxis axis, double deg, std::string* error
     if (error) *error = reason;
     return false;
   }
-  return Command(axis, deg, error);
+  return Command(axis, deg, std::numeric_limits<double>::quiet_NaN(), error);
 }
 
 bool LimitedServoDriver::Park(std::string* error) {
+  return StepTowardsPark(std::numeric_limits<double>::quiet_NaN(), error);
+}
+
+bool LimitedServoDriver::StepTowardsPark(double dt_s, std::string* error) {
   // Both axes are tried even if the first fails: parking one is better than none.
   std::string pan_error;
   std::string tilt_error;
-  const bool pan_ok = Command(ServoAxis::kPan, pan_.limiter.limits().park_deg, &pan_error);
-  const bool tilt_ok = Command(ServoAxis::kTilt, tilt_.limiter.limits().park_deg, &tilt_error);
+  const bool pan_ok = Command(ServoAxis::kPan, pan_.limiter.limits().park_deg, dt_s, &pan_error);
+  const bool tilt_ok =
+      Command(ServoAxis::kTilt, tilt_.limiter.limits().park_deg, dt_s, &tilt_error);
   if (pan_ok && tilt_ok) return true;
   if (error) *error = !pan_ok ? pan_error : tilt_error;
   if (!pan_ok && !tilt_ok && error && pan_error != tilt_error) *error += "; " + tilt_error;
@@ -101,8 +144,30 @@ bool LimitedServoDriver::Park(std::string* error) {
   return false;
 }
 
+bool LimitedServoDriver::ParkAndWait(const std::function<void()>& wait_one_period,
+                                     std::string* error) {
+  // One step per frame period; the farthest an axis can be from park is its whole range, so
+  // this many steps always get there (+1 for a first command that goes to park unlimited).
+  double steps = 1;
+  for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
+    const ServoLimits& l = limits(axis);
+    steps = std::max(steps, std::ceil((l.max_deg - l.min_deg) / max_step_deg(axis)) + 1);
+  }
+  for (int step = 0; step < static_cast<int>(steps) + 1; ++step) {
+    if (!StepTowardsPark(frame_period_s_, error)) return false;
+    if (AtPark()) return true;
+    if (wait_one_period) wait_one_period();
+  }
+  if (error) *error = Describe() + ": not at park after " + std::to_string(steps) + " steps";
+  return false;  // not reached: every step moves each axis max_step_deg closer
+}
+
+double LimitedServoDriver::max_step_deg(ServoAxis axis) const {
+  return limits(axis).max_rate_deg_per_s * frame_period_s_;
+}
+
 bool LimitedServoDriver::AtPark() const {
-  return pan_.angle_deg == pan_.limiter.limits().park_deg &&
+  return pan_.placed && tilt_.placed && pan_.angle_deg == pan_.limiter.limits().park_deg &&
          tilt_.angle_deg == tilt_.limiter.limits().park_deg;
 }
 

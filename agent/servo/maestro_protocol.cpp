@@ -18,6 +18,30 @@ std::array<std::uint8_t, 4> SetTargetCommand(int channel, int target_quarter_us)
           static_cast<std::uint8_t>((target >> 7) & 0x7F)};
 }
 
+namespace {
+
+std::array<std::uint8_t, 4> SevenBitCommand(std::uint8_t command, int channel, int value) {
+  return {command, static_cast<std::uint8_t>(channel & 0x7F),
+          static_cast<std::uint8_t>(value & 0x7F), static_cast<std::uint8_t>((value >> 7) & 0x7F)};
+}
+
+}  // namespace
+
+std::array<std::uint8_t, 4> SetSpeedCommand(int channel, int speed) {
+  return SevenBitCommand(kSetSpeed, channel, std::clamp(speed, 0, kMaxTarget));
+}
+
+std::array<std::uint8_t, 4> SetAccelerationCommand(int channel, int acceleration) {
+  return SevenBitCommand(kSetAcceleration, channel, std::clamp(acceleration, 0, 255));
+}
+
+int SpeedForRate(double deg_per_s, double us_per_deg) {
+  // [deg/s] · [µs/deg] · 4 [¼ µs/µs] · 0.01 [s per 10 ms].
+  const double speed = std::abs(deg_per_s * us_per_deg) * 4.0 * 0.01;
+  if (!std::isfinite(speed)) return kMaxTarget;
+  return std::clamp(static_cast<int>(std::floor(speed)), 1, kMaxTarget);
+}
+
 std::uint16_t ErrorRegister(std::uint8_t low, std::uint8_t high) {
   return static_cast<std::uint16_t>(low | (high << 8));
 }

@@ -25,6 +25,16 @@ struct MaestroServoDriverOptions {
   int serial_timeout_ms = 500;
   double pan_home_deg = 0;   // [deg] pan's home (ServoLimits::park_deg), through `pan`
   double tilt_home_deg = 0;  // [deg] tilt's home, through `tilt`
+  // [deg/s] each axis's rate limit (ServoLimits::max_rate_deg_per_s), set at Open as the
+  // Maestro's own speed limit on the channel, so that it never slews a servo faster even
+  // when it moves one by itself (going home on a serial timeout). 0 = leave the Maestro's.
+  double pan_max_rate_deg_per_s = 0;
+  double tilt_max_rate_deg_per_s = 0;
+  // [ms] time the Maestro's acceleration limit takes to reach that speed from rest.
+  int acceleration_ramp_ms = 20;
+  // [ms] longest a command may wait for the port to take it: a wedged port fails the command
+  // (a driver outage) instead of blocking the control loop or the watchdog's park.
+  int write_timeout_ms = 50;
 
   bool IsValid(std::string* error) const;
 
@@ -47,6 +57,15 @@ struct MaestroServoDriverOptions {
 // udev rule; a Maestro on TTL serial only, without USB; built without libusb), Open logs a
 // warning naming the cause, what to do and the values to set by hand in Pololu's Control
 // Center, and still succeeds: the serial Command Port does not need USB.
+// Open does the USB part first: a factory-fresh Maestro is in serial mode "UART, detect baud
+// rate" and ignores the Command Port until set to "USB Dual Port" (written like the other
+// parameters: only if it differs, then read back). Over USB it also reads each channel's own
+// Min/Max (the Maestro clamps targets into them, factory 992…2000 µs) and refuses to open if
+// the mapping's [min_us, max_us] reaches beyond them, naming the values to set. After the
+// serial check it sets each channel's speed and acceleration limit from the axis's rate
+// limit (volatile settings, sent at every Open).
+// The port is non-blocking: writes wait at most write_timeout_ms (poll), answers at most
+// answer_timeout_ms; EIO (the Maestro unplugged) and a wedged port fail the command.
 // What Open verifies on the serial side: the Maestro answers Get Errors (0xA1) in time, i.e.
 // the port, serial mode and baud rate are right. Get Errors also clears the register; a
 // serial-timeout bit found there is logged, as it shows the timeout fired since the last run.
@@ -71,6 +90,9 @@ class MaestroServoDriver : public ServoDriver {
   bool SetAngle(ServoAxis axis, double deg, std::string* error) override;
   // Set Target 0 deg (the centre pulse) on both channels.
   bool Park(std::string* error) override;
+  // Get Position (0x90): the channel's current pulse (mid-slew under the speed limit) as an
+  // angle through the mapping. False if the Maestro does not answer or the channel is off.
+  bool ReadAngle(ServoAxis axis, double* deg, std::string* error) override;
   std::string Describe() const override;
 
   // Reads and clears the Maestro's error register (Get Errors).
@@ -82,6 +104,12 @@ class MaestroServoDriver : public ServoDriver {
  private:
   bool Fail(const std::string& reason, std::string* error) const;
   bool Write(const std::uint8_t* bytes, std::size_t count, std::string* error);
+  // Reads exactly `count` bytes within answer_timeout_ms.
+  bool ReadAnswer(std::uint8_t* bytes, std::size_t count, const std::string& what,
+                  std::string* error);
+  // The channels' mapping inside the Maestro's own Min/Max (read over USB), else why not.
+  bool CheckChannelRanges(std::string* error) const;
+  bool SetSpeedAndAcceleration(std::string* error);
   void Close();
 
   MaestroServoDriverOptions options_;

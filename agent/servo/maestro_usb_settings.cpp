@@ -77,6 +77,31 @@ std::vector<MaestroParameter> MaestroSettingsParameters(const MaestroUsbSettings
   return parameters;
 }
 
+MaestroParameter SerialModeParameter() {
+  return {.id = maestro::kParameterSerialMode,
+          .size = 1,
+          .value = maestro::kSerialModeUsbDualPort,
+          .name = "serial mode"};
+}
+
+MaestroParameter ChannelMinParameter(int channel) {
+  const int c = std::clamp(channel, 0, maestro::kMaxChannels - 1);
+  return {.id = static_cast<std::uint8_t>(maestro::kParameterServo0Min +
+                                          c * maestro::kServoParameterBytes),
+          .size = 1,
+          .value = 0,
+          .name = "channel " + std::to_string(c) + " min"};
+}
+
+MaestroParameter ChannelMaxParameter(int channel) {
+  const int c = std::clamp(channel, 0, maestro::kMaxChannels - 1);
+  return {.id = static_cast<std::uint8_t>(maestro::kParameterServo0Max +
+                                          c * maestro::kServoParameterBytes),
+          .size = 1,
+          .value = 0,
+          .name = "channel " + std::to_string(c) + " max"};
+}
+
 MaestroControlTransfer SetParameterTransfer(const MaestroParameter& parameter) {
   return {.request_type = maestro::kRequestTypeOut,
           .request = maestro::kRequestSetParameter,
@@ -128,6 +153,20 @@ std::string DescribeParameterValue(const MaestroParameter& parameter, std::uint1
   if (parameter.id == maestro::kParameterSerialTimeout) {
     if (value == 0) return "off" + raw;
     return std::to_string(value * kTimeoutStepMs) + " ms" + raw;
+  }
+  if (parameter.id == maestro::kParameterSerialMode) {
+    switch (value) {
+      case maestro::kSerialModeUsbDualPort:
+        return "USB Dual Port" + raw;
+      case maestro::kSerialModeUsbChained:
+        return "USB Chained" + raw;
+      case maestro::kSerialModeUartDetectBaud:
+        return "UART, detect baud rate" + raw;
+      case maestro::kSerialModeUartFixedBaud:
+        return "UART, fixed baud rate" + raw;
+      default:
+        return "unknown" + raw;
+    }
   }
   if (value == 0) return "off" + raw;
   if (value == 1) return "ignore" + raw;

@@ -30,9 +30,16 @@ inline constexpr std::uint8_t kRequestReinitialize = 0x90;  // re-reads the para
 
 // Parameter numbers. The same on the Micro and the Mini Maestros; each channel has 9 bytes of
 // parameters from kParameterServo0Home on (9 · 24 channels fit below 256).
+inline constexpr std::uint8_t kParameterSerialMode = 3;    // 1 B, kSerialMode*
+inline constexpr std::uint8_t kSerialModeUsbDualPort = 0;  // Command Port takes commands
+inline constexpr std::uint8_t kSerialModeUsbChained = 1;
+inline constexpr std::uint8_t kSerialModeUartDetectBaud = 2;  // the factory setting
+inline constexpr std::uint8_t kSerialModeUartFixedBaud = 3;
 inline constexpr std::uint8_t kParameterSerialTimeout = 6;  // 2 B [10 ms], 0 = off
 inline constexpr std::uint8_t kParameterServo0Home = 30;    // 2 B [quarter-µs], 0 = off,
                                                             // 1 = ignore
+inline constexpr std::uint8_t kParameterServo0Min = 32;     // 1 B [64 quarter-µs] lowest target
+inline constexpr std::uint8_t kParameterServo0Max = 33;     // 1 B [64 quarter-µs] highest target
 inline constexpr std::uint8_t kServoParameterBytes = 9;
 inline constexpr int kMaxHome = 32440;              // [quarter-µs] largest home value
 inline constexpr int kMaxSerialTimeoutMs = 655350;  // 0xFFFF · 10 ms
@@ -78,6 +85,21 @@ struct MaestroUsbSettings {
   // 2 ≤ home_quarter_us ≤ 32440 (0 and 1 would mean Off and Ignore).
   bool IsValid(std::string* error) const;
 };
+
+// Serial mode "USB Dual Port": without it the Command Port ignores the agent (a factory-fresh
+// Maestro is in "UART, detect baud rate").
+MaestroParameter SerialModeParameter();
+
+// A channel's own target range (its Min and Max in the Control Center) [µs]: the Maestro
+// clamps every target into it, whatever the agent sends. Factory: 992…2000 µs.
+struct MaestroChannelRange {
+  int channel = 0;
+  double min_us = 0;
+  double max_us = 0;
+};
+// The two 1-byte parameters (kParameterServo0Min/Max + 9 · channel) to read; value · 16 µs.
+MaestroParameter ChannelMinParameter(int channel);
+MaestroParameter ChannelMaxParameter(int channel);
 
 // The wanted parameters: the serial timeout first, then each channel's home, in the order
 // given. Values are clamped to what the parameters can hold; call IsValid first.

@@ -18,12 +18,12 @@ std::string ManualAdvice(const MaestroUsbSettings& settings) {
   std::string text =
       "set them once in Pololu's Maestro Control Center instead: Serial Settings → Timeout = " +
       std::to_string(centiseconds / 100) + "." + hundredths + " s";
-  for (std::size_t i = 1; i < parameters.size(); ++i) {
+  for (std::size_t i = 1; i < parameters.size() && i <= settings.homes.size(); ++i) {
     text += "; channel " + std::to_string(settings.homes[i - 1].channel) +
             " \"On startup or error\" = Go to " +
             DescribeParameterValue(parameters[i], parameters[i].value);
   }
-  return text;
+  return text + "; Serial Settings → Serial mode = USB Dual Port";
 }
 
 MaestroUsbSetupResult Failure(const MaestroUsbSettings& settings, const std::string& cause) {
@@ -74,7 +74,8 @@ MaestroUsbSetupResult ApplyMaestroUsbSettings(MaestroUsbPort& port,
     }
   }
 
-  const std::vector<MaestroParameter> wanted = MaestroSettingsParameters(settings);
+  std::vector<MaestroParameter> wanted = MaestroSettingsParameters(settings);
+  wanted.push_back(SerialModeParameter());
   std::vector<MaestroParameter> differing;
   std::string changes;
   for (const MaestroParameter& parameter : wanted) {
@@ -115,7 +116,22 @@ MaestroUsbSetupResult ApplyMaestroUsbSettings(MaestroUsbPort& port,
     values += parameter.name + " " + DescribeParameterValue(parameter, parameter.value);
   }
 
-  MaestroUsbSetupResult result{.ok = true, .changed = !differing.empty(), .message = ""};
+  // The channels' own Min/Max are read only: they are the user's calibration of the servos,
+  // which the agent checks its mapping against (MaestroServoDriver) but never overwrites.
+  std::vector<MaestroChannelRange> ranges;
+  for (const MaestroHome& home : settings.homes) {
+    std::uint16_t low = 0;
+    std::uint16_t high = 0;
+    if (!Read(port, ChannelMinParameter(home.channel), &low, &reason) ||
+        !Read(port, ChannelMaxParameter(home.channel), &high, &reason)) {
+      return fail_at_device(reason);
+    }
+    // [64 quarter-µs] = 16 µs per unit.
+    ranges.push_back({.channel = home.channel, .min_us = low * 16.0, .max_us = high * 16.0});
+  }
+
+  MaestroUsbSetupResult result{
+      .ok = true, .changed = !differing.empty(), .message = "", .ranges = ranges};
   result.message = "Maestro over native USB, " + device + ": " + values +
                    (differing.empty() ? " (already set; nothing written)"
                                       : " (written: " + changes + "; reinitialized)") +

@@ -12,4 +12,9 @@ std::string_view ToString(ServoAxis axis) {
   return "?";
 }
 
+bool ServoDriver::ReadAngle(ServoAxis axis, double* /*deg*/, std::string* error) {
+  if (error) *error = Describe() + ": cannot read the " + std::string(ToString(axis)) + " position";
+  return false;
+}
+
 }  // namespace kapfix::agent

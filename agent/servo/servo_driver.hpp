@@ -25,6 +25,11 @@ class ServoDriver {
   // Moves both axes to their hold position and keeps them there (a backend: 0 deg, each
   // channel's centre pulse; LimitedServoDriver: ServoLimits::park_deg, rate-limited).
   virtual bool Park(std::string* error) = 0;
+  // Where the servo on `axis` stands now [deg], read from the device (a Maestro's Get
+  // Position). False where the device cannot tell (the default): the caller then keeps what
+  // it last commanded. Used after an outage, when the device may have moved the servos on its
+  // own (a Maestro's serial timeout sends them home).
+  virtual bool ReadAngle(ServoAxis axis, double* deg, std::string* error);
   // One line for logs and the station, e.g. "maestro /dev/ttyACM0 (pan ch 0, tilt ch 1)".
   virtual std::string Describe() const = 0;
 };

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
 #include <memory>
+#include <thread>
 
 #include "agent/servo/fake_servo_driver.hpp"
 
@@ -26,8 +29,8 @@ struct Rig {
                                                   [this] { return now_us; });
     std::string error;
     EXPECT_TRUE(servos->Open(&error)) << error;
-    commander = std::make_unique<ServoCommander>(*servos, mutex, ServoCommanderOptions{100, 400},
-                                                 [this] { return now_us; });
+    commander = std::make_unique<ServoCommander>(
+        *servos, mutex, ServoCommanderOptions{100, 400, false}, [this] { return now_us; });
   }
   void AdvanceMs(int ms) { now_us += std::int64_t{ms} * 1000; }
 };
@@ -92,13 +95,80 @@ TEST(ServoCommanderTest, FixationResumesFromTheLastAnglesOnceTheDriverIsBack) {
   const ServoTargets reopened = rig.commander->Command({6.0, -2.0});
   EXPECT_FALSE(rig.commander->out());
   EXPECT_EQ(rig.commander->counters().recoveries, 1U);
-  // Reopened at the last angles the loop knows, (5, −2): not at park, not at a jump.
+  // Reopened where the device says the servos stand, (5, −2), and nothing sent on reopen:
+  // the first command after it does not move them (no time since the reopen).
   ASSERT_GT(rig.fake->commands().size(), before);
   EXPECT_DOUBLE_EQ(rig.fake->commands()[before].deg, 5.0);
   EXPECT_DOUBLE_EQ(reopened.pan_deg, 5.0);
   // And the next frame's target is reached as the rate limit allows.
   rig.AdvanceMs(100);
   EXPECT_DOUBLE_EQ(rig.commander->Command({6.0, -2.0}).pan_deg, 6.0);
+}
+
+// A servo driver whose Open waits until the test lets it finish (a Maestro taking its answer
+// timeout, a slow USB setup).
+class SlowOpenServoDriver : public FakeServoDriver {
+ public:
+  bool Open(std::string* error) override {
+    if (hold_) {
+      std::unique_lock lock(mutex_);
+      entered_ = true;
+      changed_.notify_all();
+      changed_.wait(lock, [this] { return released_; });
+    }
+    return FakeServoDriver::Open(error);
+  }
+  void Hold() { hold_ = true; }
+  void WaitUntilOpening() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return entered_; });
+  }
+  void Release() {
+    std::lock_guard lock(mutex_);
+    released_ = true;
+    changed_.notify_all();
+  }
+
+ private:
+  std::atomic<bool> hold_{false};
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool entered_ = false;
+  bool released_ = false;
+};
+
+TEST(ServoCommanderTest, ASlowReopenRunsBesideTheControlLoopWithoutHoldingItUp) {
+  std::int64_t now_us = 0;
+  auto backend = std::make_unique<SlowOpenServoDriver>();
+  SlowOpenServoDriver* fake = backend.get();
+  LimitedServoDriver servos(std::move(backend), ServoLimits{}, ServoLimits{},
+                            [&now_us] { return now_us; });
+  ASSERT_TRUE(servos.Open(nullptr));
+  std::mutex mutex;
+  ServoCommander commander(servos, mutex, ServoCommanderOptions{100, 400, true},
+                           [&now_us] { return now_us; });
+  now_us += 1'000'000;
+  commander.Command({2.0, 0.0});
+  fake->Disconnect();
+  fake->Hold();
+  commander.Command({2.0, 0.0});  // fails: out
+  ASSERT_TRUE(commander.out());
+  now_us += 100'000;
+  commander.Command({2.0, 0.0});  // starts the reopen, which now waits inside Open
+  fake->WaitUntilOpening();
+  // The loop goes on meanwhile: commands return at once with the held angles.
+  for (int i = 0; i < 10; ++i) {
+    now_us += 33'000;
+    EXPECT_DOUBLE_EQ(commander.Command({3.0, 0.0}).pan_deg, 2.0);
+  }
+  EXPECT_TRUE(commander.out());
+  fake->Release();
+  while (commander.out()) {
+    now_us += 33'000;
+    commander.Command({3.0, 0.0});
+    std::this_thread::yield();
+  }
+  EXPECT_EQ(commander.counters().recoveries, 1U);
 }
 
 TEST(ServoCommanderTest, NonFiniteTargetIsRefusedWithoutAnOutage) {

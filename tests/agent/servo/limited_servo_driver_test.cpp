@@ -23,7 +23,8 @@ class LimitedServoDriverTest : public ::testing::Test {
   LimitedServoDriverTest() {
     auto fake = std::make_unique<FakeServoDriver>();
     fake_ = fake.get();
-    ServoLimits pan;  // [-45, 45] deg, 120 deg/s, park 0
+    fake_->SetReadable(false);  // a device that cannot tell where its servos stand
+    ServoLimits pan;            // [-45, 45] deg, 120 deg/s, park 0
     ServoLimits tilt;
     tilt.min_deg = -30;
     tilt.max_deg = 10;
@@ -31,9 +32,11 @@ class LimitedServoDriverTest : public ::testing::Test {
     driver_ = std::make_unique<LimitedServoDriver>(std::move(fake), pan, tilt,
                                                    [this] { return now_us_; });
   }
+  // Opens and sends the first command, which puts both axes at park.
   void OpenDriver() {
     std::string error;
     ASSERT_TRUE(driver_->Open(&error)) << error;
+    ASSERT_TRUE(driver_->Park(&error)) << error;
   }
   void Advance(double seconds) { now_us_ += static_cast<std::int64_t>(seconds * 1e6); }
 
@@ -42,10 +45,96 @@ class LimitedServoDriverTest : public ::testing::Test {
   std::unique_ptr<LimitedServoDriver> driver_;
 };
 
-TEST_F(LimitedServoDriverTest, OpenSendsEachAxisToItsPark) {
-  OpenDriver();
-  EXPECT_EQ(fake_->angle(ServoAxis::kPan), 0);
+TEST_F(LimitedServoDriverTest, OpenMovesNothing) {
+  std::string error;
+  ASSERT_TRUE(driver_->Open(&error)) << error;
+  EXPECT_TRUE(fake_->commands().empty());
+  EXPECT_FALSE(driver_->placed());
+  EXPECT_FALSE(driver_->AtPark());
+}
+
+TEST_F(LimitedServoDriverTest, FirstCommandAfterOpenGoesToParkWhateverItAsks) {
+  std::string error;
+  ASSERT_TRUE(driver_->Open(&error)) << error;
+  Advance(1);
+  ASSERT_TRUE(driver_->SetAngle(ServoAxis::kTilt, 10, &error)) << error;
   EXPECT_EQ(fake_->angle(ServoAxis::kTilt), -5);
+  Advance(1);
+  ASSERT_TRUE(driver_->SetAngle(ServoAxis::kTilt, 10, &error)) << error;
+  EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kTilt), -5 + 120.0 / 30);  // one frame's step
+}
+
+TEST_F(LimitedServoDriverTest, OpenOnADeviceThatTellsItsPositionSlewsFromThere) {
+  fake_->SetReadable(true);
+  fake_->MoveOnItsOwn(30, 0);
+  std::string error;
+  ASSERT_TRUE(driver_->Open(&error)) << error;
+  EXPECT_TRUE(driver_->placed());
+  Advance(1);
+  ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, -40, &error)) << error;
+  EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 30 - 120.0 / 30);
+}
+
+TEST_F(LimitedServoDriverTest, AfterAnyGapOneStepIsAtMostRateTimesFramePeriod) {
+  OpenDriver();
+  Advance(3600);  // an hour without a command
+  ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 45, nullptr));
+  EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 120.0 / 30);
+  EXPECT_DOUBLE_EQ(driver_->max_step_deg(ServoAxis::kPan), 4);
+}
+
+TEST_F(LimitedServoDriverTest, ReopenSlewsBackFromWhereTheDeviceMovedTheServos) {
+  fake_->SetReadable(true);
+  OpenDriver();
+  for (int i = 0; i < 20; ++i) {
+    Advance(1.0 / 30);
+    ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
+  }
+  ASSERT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 40);
+  fake_->Disconnect();
+  fake_->MoveOnItsOwn(0, -5);  // a Maestro's serial timeout sent them home
+  Advance(10);
+  std::string error;
+  ASSERT_TRUE(driver_->Reopen(&error)) << error;
+  EXPECT_EQ(driver_->angle(ServoAxis::kPan), 0);
+  Advance(1.0 / 30);
+  ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
+  EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 4);
+}
+
+TEST_F(LimitedServoDriverTest, ReopenMovesNothing) {
+  OpenDriver();
+  const std::size_t before = fake_->commands().size();
+  fake_->Disconnect();
+  std::string error;
+  ASSERT_TRUE(driver_->Reopen(&error)) << error;
+  EXPECT_EQ(fake_->commands().size(), before);
+}
+
+TEST_F(LimitedServoDriverTest, ParkAndWaitSlewsToParkOneFramePeriodPerStep) {
+  OpenDriver();
+  for (int i = 0; i < 20; ++i) {
+    Advance(1.0 / 30);
+    ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
+  }
+  ASSERT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 40);
+  int waits = 0;
+  double previous = 40;
+  double largest_step = 0;
+  std::string error;
+  // The clock does not move: the steps are bounded by the frame period, not the time.
+  ASSERT_TRUE(driver_->ParkAndWait(
+      [&] {
+        ++waits;
+        largest_step = std::max(largest_step, std::abs(fake_->angle(ServoAxis::kPan) - previous));
+        previous = fake_->angle(ServoAxis::kPan);
+      },
+      &error))
+      << error;
+  EXPECT_TRUE(driver_->AtPark());
+  EXPECT_EQ(fake_->angle(ServoAxis::kPan), 0);
+  EXPECT_EQ(waits, 9);  // 40 deg at 4 deg a step: 10 steps, a wait between each
+  EXPECT_LE(largest_step, 4 + 1e-9);
 }
 
 TEST_F(LimitedServoDriverTest, CommandsBeforeOpenFail) {
@@ -192,6 +281,58 @@ TEST_F(LimitedServoDriverTest, RandomCommandsNeverReachTheBackendOutsideLimitsOr
     last_us[a] = now_us_;
   }
   EXPECT_EQ(violations, 0);
+}
+
+// Property (issue 10): whatever the sequence of commands, gaps (up to minutes), outages
+// (during which the device may move the servos by itself, as a Maestro's serial timeout
+// does), reopens and parks, no command moves a servo further than max_rate · frame period
+// from where it stood, nor outside the limits.
+TEST(LimitedServoDriverPropertyTest, NoSequenceMakesOneStepExceedRateTimesFramePeriod) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    auto owned = std::make_unique<FakeServoDriver>();
+    FakeServoDriver* fake = owned.get();
+    std::int64_t now_us = 0;
+    ServoLimits pan;
+    ServoLimits tilt{.min_deg = -30, .max_deg = 10, .max_rate_deg_per_s = 60, .park_deg = -5};
+    const double period_s = 1.0 / 60;
+    LimitedServoDriver driver(
+        std::move(owned), pan, tilt, [&now_us] { return now_us; }, period_s);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> angle(-200, 200);
+    std::uniform_int_distribution<int> event(0, 99);
+    std::exponential_distribution<double> gap_s(20);  // mostly short, sometimes long
+    ASSERT_TRUE(driver.Open(nullptr));
+    int violations = 0;
+    int steps = 0;
+    std::size_t seen = 0;
+    for (int i = 0; i < 5000; ++i) {
+      const int e = event(rng);
+      now_us += static_cast<std::int64_t>((e == 0 ? 300 : gap_s(rng)) * 1e6);
+      // Where the servos physically stand before this event's commands.
+      double at[2] = {fake->angle(ServoAxis::kPan), fake->angle(ServoAxis::kTilt)};
+      if (e < 3) {  // an outage, and the device parks the servos by itself half the time
+        fake->Disconnect();
+        if (e == 1) fake->MoveOnItsOwn(0, -5);
+      } else if (e < 8) {
+        driver.Reopen(nullptr);
+      } else if (e < 10) {
+        driver.ParkAndWait([&now_us] { now_us += 1; }, nullptr);  // even with no time passing
+      } else {
+        driver.SetAngle(i % 2 ? ServoAxis::kTilt : ServoAxis::kPan, angle(rng), nullptr);
+      }
+      for (; seen < fake->commands().size(); ++seen) {
+        const FakeServoCommand& c = fake->commands()[seen];
+        const int a = c.axis == ServoAxis::kPan ? 0 : 1;
+        const ServoLimits& l = driver.limits(c.axis);
+        if (!(c.deg >= l.min_deg && c.deg <= l.max_deg)) ++violations;
+        if (!(std::abs(c.deg - at[a]) <= l.max_rate_deg_per_s * period_s + 1e-9)) ++violations;
+        at[a] = c.deg;
+        ++steps;
+      }
+    }
+    EXPECT_EQ(violations, 0) << "seed " << seed;
+    EXPECT_GT(steps, 1000) << "seed " << seed;
+  }
 }
 
 TEST(LimitedServoDriverConstructionTest, InvalidLimitsThrow) {

@@ -6,12 +6,14 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "agent/servo/maestro_protocol.hpp"
 #include "tests/agent/support/fake_maestro_usb_port.hpp"
 
 namespace kapfix::agent {
@@ -51,6 +53,11 @@ class PseudoTerminal {
     }
     return bytes;
   }
+  // The Maestro unplugged: the master goes away and the terminal side hangs up (EIO).
+  void Unplug() {
+    if (master_ >= 0) ::close(master_);
+    master_ = -1;
+  }
   void Write(const std::vector<std::uint8_t>& bytes) {
     ASSERT_EQ(::write(master_, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
   }
@@ -69,17 +76,29 @@ MaestroServoDriverOptions Options(const std::string& path) {
   return options;
 }
 
-// Opens `driver` while playing the Maestro: waits for Get Errors and answers `errors`.
-// Returns the bytes the driver sent during Open.
+// Opens `driver` while playing the Maestro: waits for Get Errors and answers `errors` (only
+// once its serial mode, set over `usb`, is USB Dual Port, as a real one), then takes every
+// byte Open sends after it (speed and acceleration limits). Returns the bytes sent.
 std::vector<std::uint8_t> OpenAnswering(PseudoTerminal& pty, MaestroServoDriver& driver,
                                         std::vector<std::uint8_t> errors, std::string* error,
-                                        bool* opened) {
+                                        bool* opened,
+                                        const FakeMaestroUsbPort::State* usb = nullptr) {
   std::vector<std::uint8_t> seen;
+  std::atomic<bool> done{false};
   std::thread maestro([&] {
     seen = pty.Read(1, 3000);
-    if (seen == std::vector<std::uint8_t>{0xA1}) pty.Write(errors);
+    const bool listening =
+        !usb || usb->eeprom.at(maestro::kParameterSerialMode) == maestro::kSerialModeUsbDualPort;
+    if (seen == std::vector<std::uint8_t>{0xA1} && listening) pty.Write(errors);
+    while (!done) {
+      const auto more = pty.Read(64, 20);
+      seen.insert(seen.end(), more.begin(), more.end());
+    }
+    const auto rest = pty.Read(64, 20);
+    seen.insert(seen.end(), rest.begin(), rest.end());
   });
   *opened = driver.Open(error);
+  done = true;
   maestro.join();
   return seen;
 }
@@ -101,7 +120,8 @@ TEST_F(MaestroServoDriverTest, OpenSendsGetErrorsAndSucceedsOnAnAnswer) {
   bool opened = false;
   const auto sent = OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened);
   EXPECT_TRUE(opened) << error;
-  EXPECT_EQ(sent, (std::vector<std::uint8_t>{0xA1}));
+  ASSERT_FALSE(sent.empty());
+  EXPECT_EQ(sent.front(), 0xA1);
 }
 
 TEST_F(MaestroServoDriverTest, OpenAcceptsAReportedSerialTimeout) {
@@ -171,6 +191,7 @@ TEST_F(MaestroServoDriverTest, OpenSetsTheSerialTimeoutAndTheParkPulsesOverUsb) 
 
 TEST_F(MaestroServoDriverTest, NoMaestroOnUsbIsAWarningAndTheDriverStillOpens) {
   usb_.open_error = "no Maestro found on USB";
+  usb_.eeprom[maestro::kParameterSerialMode] = maestro::kSerialModeUsbDualPort;
   MaestroServoDriver driver = Driver(Options(pty_.path()));
   std::string error;
   bool opened = false;
@@ -183,12 +204,106 @@ TEST_F(MaestroServoDriverTest, NoMaestroOnUsbIsAWarningAndTheDriverStillOpens) {
   EXPECT_EQ(pty_.Read(4, 2000), (std::vector<std::uint8_t>{0x84, 0x00, 0x70, 0x2E}));
 }
 
-TEST_F(MaestroServoDriverTest, UsbIsNotTriedWhenTheSerialPortDoesNotAnswer) {
+TEST_F(MaestroServoDriverTest, FactoryFreshMaestroIsSetToUsbDualPortAndThenAnswers) {
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  EXPECT_TRUE(opened) << error;
+  EXPECT_EQ(usb_.eeprom[maestro::kParameterSerialMode], maestro::kSerialModeUsbDualPort);
+  EXPECT_NE(driver.usb_setup().message.find("serial mode UART, detect baud rate (2) → USB Dual "
+                                            "Port (0)"),
+            std::string::npos)
+      << driver.usb_setup().message;
+}
+
+TEST_F(MaestroServoDriverTest, FactoryFreshMaestroWithoutUsbSaysWhyItDoesNotAnswer) {
+  usb_.open_error = "no Maestro found on USB";
   MaestroServoDriverOptions options = Options(pty_.path());
   options.answer_timeout_ms = 50;
   MaestroServoDriver driver = Driver(options);
-  EXPECT_FALSE(driver.Open(nullptr));
-  EXPECT_EQ(usb_.opens, 0);
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  EXPECT_FALSE(opened);
+  EXPECT_NE(error.find("USB Dual Port"), std::string::npos) << error;
+  EXPECT_NE(error.find("no Maestro found on USB"), std::string::npos) << error;
+}
+
+TEST_F(MaestroServoDriverTest, MappingBeyondTheChannelsOwnMinMaxIsRefusedWithTheValuesToSet) {
+  MaestroServoDriverOptions options = Options(pty_.path());
+  options.pan.min_us = 900;  // factory Min is 992 µs
+  options.pan.max_us = 2100;
+  MaestroServoDriver driver = Driver(options);
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  EXPECT_FALSE(opened);
+  EXPECT_NE(error.find("992…2000 µs"), std::string::npos) << error;
+  EXPECT_NE(error.find("Min ≤ 896 µs and Max ≥ 2112 µs"), std::string::npos) << error;
+}
+
+TEST_F(MaestroServoDriverTest, OpenSetsEachChannelsSpeedAndAccelerationFromTheRateLimit) {
+  MaestroServoDriverOptions options = Options(pty_.path());
+  options.pan_max_rate_deg_per_s = 150;   // · 10 µs/deg · 4 · 0.01 = 60 [¼ µs / 10 ms]
+  options.tilt_max_rate_deg_per_s = 100;  // 40
+  options.acceleration_ramp_ms = 20;      // 60 · 80 / 20 = 240; 40 · 4 = 160
+  MaestroServoDriver driver = Driver(options);
+  std::string error;
+  bool opened = false;
+  const auto sent = OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  ASSERT_TRUE(opened) << error;
+  EXPECT_EQ(sent, (std::vector<std::uint8_t>{0xA1, 0x87, 0x00, 60, 0, 0x89, 0x00, 0x70, 0x01, 0x87,
+                                             0x05, 40, 0, 0x89, 0x05, 0x20, 0x01}));
+}
+
+TEST_F(MaestroServoDriverTest, ReadAngleAsksGetPositionAndMapsItBack) {
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  ASSERT_TRUE(opened) << error;
+  double deg = 0;
+  bool read = false;
+  std::thread reader([&] { read = driver.ReadAngle(ServoAxis::kTilt, &deg, &error); });
+  EXPECT_EQ(pty_.Read(2, 3000), (std::vector<std::uint8_t>{0x90, 0x05}));
+  pty_.Write({0x70, 0x17});
+  reader.join();
+  ASSERT_TRUE(read) << error;
+  // 0x1770 = 6000 quarter-µs = 1500 µs = the centre: 0 deg.
+  EXPECT_DOUBLE_EQ(deg, 0);
+}
+
+// The Maestro unplugged: the terminal side reports EIO (here: the master closed, so the
+// terminal hangs up) and the next command fails at once instead of blocking.
+TEST_F(MaestroServoDriverTest, UnpluggedMaestroFailsTheNextCommand) {
+  MaestroServoDriver driver = Driver(Options(pty_.path()));
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  ASSERT_TRUE(opened) << error;
+  pty_.Unplug();
+  EXPECT_FALSE(driver.SetAngle(ServoAxis::kPan, 0, &error));
+  EXPECT_NE(error.find("unplugged"), std::string::npos) << error;
+}
+
+// A wedged port: nothing reads what the driver writes, so the terminal's buffer fills and
+// writes would block for ever. Each command gives up after write_timeout_ms instead.
+TEST_F(MaestroServoDriverTest, WedgedPortFailsACommandWithinTheWriteTimeout) {
+  MaestroServoDriverOptions options = Options(pty_.path());
+  options.write_timeout_ms = 20;
+  MaestroServoDriver driver = Driver(options);
+  std::string error;
+  bool opened = false;
+  OpenAnswering(pty_, driver, {0x00, 0x00}, &error, &opened, &usb_);
+  ASSERT_TRUE(opened) << error;
+  // Wedged: from here on nobody reads the master side.
+  bool failed = false;
+  for (int i = 0; i < 100000 && !failed; ++i) {
+    failed = !driver.SetAngle(ServoAxis::kPan, 0, &error);
+  }
+  ASSERT_TRUE(failed) << "the pseudo-terminal never filled up";
+  EXPECT_NE(error.find("did not take a command within 20 ms"), std::string::npos) << error;
 }
 
 TEST(MaestroServoDriverOpenTest, MissingPortIsNamedWithTheReason) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "agent/servo/maestro_protocol.hpp"
 #include "agent/servo/maestro_usb_port.hpp"
 #include "agent/servo/maestro_usb_settings.hpp"
 
@@ -14,12 +15,24 @@ namespace kapfix::agent {
 // transfer recorded. Knobs make it fail to open, refuse writes or drop them silently.
 class FakeMaestroUsbPort : public MaestroUsbPort {
  public:
+  // A Maestro as it leaves the factory: serial mode "UART, detect baud rate" (the Command
+  // Port ignores commands), every channel's Min/Max 992…2000 µs (62 and 125 · 16 µs).
+  static std::map<std::uint8_t, std::uint16_t> FactoryEeprom() {
+    std::map<std::uint8_t, std::uint16_t> eeprom;
+    eeprom[maestro::kParameterSerialMode] = maestro::kSerialModeUartDetectBaud;
+    for (int channel = 0; channel < maestro::kMaxChannels; ++channel) {
+      eeprom[static_cast<std::uint8_t>(ChannelMinParameter(channel).id)] = 62;
+      eeprom[static_cast<std::uint8_t>(ChannelMaxParameter(channel).id)] = 125;
+    }
+    return eeprom;
+  }
+
   struct State {
     std::uint16_t product_id = maestro::kProductMini12;
-    std::string open_error;                        // non-empty: Open fails with it
-    bool refuse_writes = false;                    // SET_PARAMETER fails
-    bool drop_writes = false;                      // SET_PARAMETER "succeeds", stores nothing
-    std::map<std::uint8_t, std::uint16_t> eeprom;  // parameter id → value; absent = 0
+    std::string open_error;      // non-empty: Open fails with it
+    bool refuse_writes = false;  // SET_PARAMETER fails
+    bool drop_writes = false;    // SET_PARAMETER "succeeds", stores nothing
+    std::map<std::uint8_t, std::uint16_t> eeprom = FactoryEeprom();  // id → value; absent = 0
     std::vector<MaestroControlTransfer> transfers;
     int opens = 0;
     bool open = false;

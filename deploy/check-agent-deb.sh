@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Installs the kapfix-agent .deb into a clean Debian root and checks what a user with a fresh
+# board would meet (issue 10): the package's dependencies (runtime libraries only, no Qt, no
+# compiler), the keys postinst made (owned by kapfix, mode 0600, the names the shipped config
+# uses), `systemd-analyze verify` on the unit, and `kapfix-agent --preflight --sim`.
+# Needs root (debootstrap, chroot) and the network (Debian's mirror). Prints the time taken.
+# Usage: sudo deploy/check-agent-deb.sh [BUILD_DIR] [SUITE]
+#        BUILD_DIR with kapfix-agent and kapfix-keygen built (default build/default),
+#        SUITE the Debian release the build host runs (default: this machine's codename).
+set -euo pipefail
+build=${1:-build/default}
+suite=${2:-$(. /etc/os-release && echo "$VERSION_CODENAME")}
+start=$(date +%s)
+fail() { echo "check-agent-deb: FAIL: $*" >&2; exit 1; }
+pass() { echo "check-agent-deb: PASS: $*"; }
+
+# 1. The package, built by CPack (agent component only).
+out=$(mktemp -d /tmp/kapfix-deb.XXXXXX)
+(cd "$build" && cpack -G DEB -D CPACK_COMPONENTS_ALL=agent -B "$out" >/dev/null)
+deb=$(ls "$out"/kapfix-agent_*.deb)
+depends=$(dpkg-deb -f "$deb" Depends)
+echo "check-agent-deb: $(basename "$deb"): Depends: $depends"
+if grep -Eiq 'qt|libgl|g\+\+|gcc-[0-9]|clang|-dev\b' <<<"$depends"; then
+  fail "the agent package depends on a GUI or build package"
+fi
+pass "runtime dependencies only (no Qt, no compiler)"
+
+# 2. A clean root of the same release, with the package installed as apt would.
+root=$(mktemp -d /tmp/kapfix-root.XXXXXX)
+trap 'umount -l "$root/proc" 2>/dev/null || true; rm -rf "$root" "$out"' EXIT
+debootstrap --variant=minbase "$suite" "$root" >/dev/null
+mount -t proc proc "$root/proc"
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+cp "$deb" "$root/tmp/"
+chroot "$root" apt-get install -y -q "/tmp/$(basename "$deb")" >/dev/null
+pass "installed into a clean $suite root"
+
+# 3. Keys and configuration.
+[ "$(stat -c '%U %a' "$root/etc/kapfix/agent.key")" = "kapfix 600" ] ||
+  fail "agent.key is $(stat -c '%U %a' "$root/etc/kapfix/agent.key"), want kapfix 600"
+[ -f "$root/etc/kapfix/agent.pub" ] || fail "no agent.pub"
+[ -f "$root/etc/kapfix/authorized_keys" ] || fail "no authorized_keys"
+grep -q '"/etc/kapfix/agent.key"' "$root/etc/kapfix/agent.json" ||
+  fail "agent.json does not name /etc/kapfix/agent.key"
+pass "postinst made agent.key (kapfix, 0600), agent.pub and an empty authorized_keys"
+
+# 4. The unit, as systemd reads it.
+chroot "$root" systemd-analyze verify /lib/systemd/system/kapfix-agent.service ||
+  fail "systemd-analyze verify rejected the unit"
+pass "systemd-analyze verify accepts kapfix-agent.service"
+
+# 5. The agent itself, as the service's user.
+chroot "$root" setpriv --reuid=kapfix --regid=kapfix --init-groups \
+  kapfix-agent --config /etc/kapfix/agent.json --sim --preflight ||
+  fail "kapfix-agent --preflight --sim failed"
+pass "kapfix-agent --preflight --sim as user kapfix"
+echo "check-agent-deb: all checks passed in $(( $(date +%s) - start )) s"
