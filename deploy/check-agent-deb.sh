@@ -4,10 +4,18 @@
 # compiler), the keys postinst made (owned by kapfix, mode 0600, the names the shipped config
 # uses), `systemd-analyze verify` on the unit, and `kapfix-agent --preflight --sim`.
 # Needs root (debootstrap, chroot) and the network (Debian's mirror). Prints the time taken.
-# Usage: sudo deploy/check-agent-deb.sh [BUILD_DIR] [SUITE]
+# Usage: sudo deploy/check-agent-deb.sh [--base DIR] [BUILD_DIR] [SUITE]
 #        BUILD_DIR with kapfix-agent and kapfix-keygen built (default build/default),
-#        SUITE the Debian release the build host runs (default: this machine's codename).
+#        SUITE the Debian release the build host runs (default: this machine's codename),
+#        --package-only: build the .debs and check the agent's dependencies, nothing else
+#        (CI: no root or network needed).
+#        --base DIR a clean root made earlier by `debootstrap --variant=minbase SUITE DIR`,
+#        copied instead of bootstrapping a new one (CI can cache it).
 set -euo pipefail
+base=""
+package_only=0
+if [ "${1:-}" = "--package-only" ]; then package_only=1; shift; fi
+if [ "${1:-}" = "--base" ]; then base=$2; shift 2; fi
 build=${1:-build/default}
 suite=${2:-$(. /etc/os-release && echo "$VERSION_CODENAME")}
 start=$(date +%s)
@@ -16,7 +24,7 @@ pass() { echo "check-agent-deb: PASS: $*"; }
 
 # 1. The package, built by CPack (agent component only).
 out=$(mktemp -d /tmp/kapfix-deb.XXXXXX)
-(cd "$build" && cpack -G DEB -D CPACK_COMPONENTS_ALL=agent -B "$out" >/dev/null)
+(cd "$build" && cpack -G DEB -B "$out" >/dev/null)
 deb=$(ls "$out"/kapfix-agent_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "check-agent-deb: $(basename "$deb"): Depends: $depends"
@@ -24,11 +32,21 @@ if grep -Eiq 'qt|libgl|g\+\+|gcc-[0-9]|clang|-dev\b' <<<"$depends"; then
   fail "the agent package depends on a GUI or build package"
 fi
 pass "runtime dependencies only (no Qt, no compiler)"
+if [ "$package_only" = 1 ]; then
+  ls "$out"/*.deb
+  rm -rf "$out"
+  exit 0
+fi
 
 # 2. A clean root of the same release, with the package installed as apt would.
 root=$(mktemp -d /tmp/kapfix-root.XXXXXX)
 trap 'umount -l "$root/proc" 2>/dev/null || true; rm -rf "$root" "$out"' EXIT
-debootstrap --variant=minbase "$suite" "$root" >/dev/null
+if [ -n "$base" ]; then
+  cp -a "$base/." "$root/"
+else
+  debootstrap --variant=minbase "$suite" "$root" >/dev/null
+fi
+echo "check-agent-deb: clean root ready after $(( $(date +%s) - start )) s"
 mount -t proc proc "$root/proc"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 cp "$deb" "$root/tmp/"

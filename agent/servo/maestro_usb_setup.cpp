@@ -33,7 +33,8 @@ MaestroUsbSetupResult Failure(const MaestroUsbSettings& settings, const std::str
                      ". The serial timeout and home positions are NOT set by the agent: if it "
                      "dies, the servos may hold their last position instead of parking. Fix "
                      "the cause, or " +
-                     ManualAdvice(settings) + ". Flying on; servo commands use the serial port."};
+                     ManualAdvice(settings) + ". Flying on; servo commands use the serial port.",
+          .ranges = {}};
 }
 
 bool Read(MaestroUsbPort& port, const MaestroParameter& parameter, std::uint16_t* value,

@@ -21,6 +21,10 @@ int PulseTicks(double pulse_us, double oscillator_hz, int prescale) {
   return static_cast<int>(std::clamp(ticks, 0.0, double{kTicksPerPeriod - 1}));
 }
 
+double TicksPulseUs(int ticks, double oscillator_hz, int prescale) {
+  return ticks * (prescale + 1) / oscillator_hz * 1e6;
+}
+
 std::array<std::uint8_t, 5> ChannelPulseWrite(int channel, int off_ticks) {
   const int off = std::clamp(off_ticks, 0, kTicksPerPeriod - 1);
   return {static_cast<std::uint8_t>(kLed0OnL + 4 * channel), 0x00, 0x00,

@@ -36,6 +36,9 @@ double FrequencyHz(double oscillator_hz, int prescale);
 // (prescale + 1) / oscillator: 4.88 µs at 25 MHz, 121). 1500 µs → 307.
 int PulseTicks(double pulse_us, double oscillator_hz, int prescale);
 
+// The inverse of PulseTicks: a pulse of `ticks` counter ticks [µs]. 307 at 25 MHz, 121 → 1499.
+double TicksPulseUs(int ticks, double oscillator_hz, int prescale);
+
 // One I2C write starting at LEDn_ON_L with auto-increment: register, ON_L, ON_H, OFF_L,
 // OFF_H. Pulses start at tick 0 (ON = 0) and end at `off_ticks`.
 std::array<std::uint8_t, 5> ChannelPulseWrite(int channel, int off_ticks);

@@ -149,6 +149,26 @@ bool Pca9685ServoDriver::SetAngle(ServoAxis axis, double deg, std::string* error
   return WriteBytes(bytes.data(), bytes.size(), error);
 }
 
+bool Pca9685ServoDriver::ReadAngle(ServoAxis axis, double* deg, std::string* error) {
+  const ServoChannelMapping& mapping = axis == ServoAxis::kPan ? options_.pan : options_.tilt;
+  const auto base = static_cast<std::uint8_t>(pca9685::kLed0OnL + 4 * mapping.channel);
+  std::uint8_t bytes[4] = {0, 0, 0, 0};  // ON_L, ON_H, OFF_L, OFF_H
+  for (std::uint8_t i = 0; i < 4; ++i) {
+    if (!ReadRegister(static_cast<std::uint8_t>(base + i), &bytes[i], error)) return false;
+  }
+  constexpr std::uint8_t kFullBit = 0x10;  // bit 4 of ON_H / OFF_H: fully on / fully off
+  if ((bytes[1] & kFullBit) || (bytes[3] & kFullBit)) {
+    return Fail("channel " + std::to_string(mapping.channel) + " is fully on or off", error);
+  }
+  const int on = bytes[0] | ((bytes[1] & 0x0F) << 8);
+  const int off = bytes[2] | ((bytes[3] & 0x0F) << 8);
+  const int ticks = (off - on + pca9685::kTicksPerPeriod) % pca9685::kTicksPerPeriod;
+  if (ticks == 0) return Fail("channel " + std::to_string(mapping.channel) + " is off", error);
+  const double pulse_us = pca9685::TicksPulseUs(ticks, options_.oscillator_hz, prescale_);
+  *deg = (pulse_us - mapping.center_us) / mapping.us_per_deg;
+  return true;
+}
+
 bool Pca9685ServoDriver::Park(std::string* error) {
   return SetAngle(ServoAxis::kPan, 0.0, error) && SetAngle(ServoAxis::kTilt, 0.0, error);
 }

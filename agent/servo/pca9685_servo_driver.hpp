@@ -41,6 +41,9 @@ class Pca9685ServoDriver : public ServoDriver {
   bool SetAngle(ServoAxis axis, double deg, std::string* error) override;
   // 0 deg (the centre pulse) on both channels.
   bool Park(std::string* error) override;
+  // Reads the channel's LEDn_ON/OFF registers back (the chip keeps its pulses through an I2C
+  // outage) and maps the pulse to an angle; false for a channel that is off.
+  bool ReadAngle(ServoAxis axis, double* deg, std::string* error) override;
   std::string Describe() const override;
 
  private:

@@ -25,8 +25,10 @@ struct Rig {
   Rig() {
     auto backend = std::make_unique<FakeServoDriver>();
     fake = backend.get();
-    servos = std::make_unique<LimitedServoDriver>(std::move(backend), ServoLimits{}, ServoLimits{},
-                                                  [this] { return now_us; });
+    // A frame period of 1 s: the step bound (120 deg) never holds a command back here, so what
+    // the tests see is the commander's doing.
+    servos = std::make_unique<LimitedServoDriver>(
+        std::move(backend), ServoLimits{}, ServoLimits{}, [this] { return now_us; }, 1.0);
     std::string error;
     EXPECT_TRUE(servos->Open(&error)) << error;
     commander = std::make_unique<ServoCommander>(

@@ -20,7 +20,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A LimitedServoDriver over a FakeServoDriver with a clock the test moves by hand.
 class LimitedServoDriverTest : public ::testing::Test {
  protected:
-  LimitedServoDriverTest() {
+  // A frame period of 1 s: the step bound (120 deg) stays out of the way of the tests of the
+  // limits and the rate; LimitedServoDriverStepTest uses a camera's 1/30 s.
+  explicit LimitedServoDriverTest(double frame_period_s = 1.0) {
     auto fake = std::make_unique<FakeServoDriver>();
     fake_ = fake.get();
     fake_->SetReadable(false);  // a device that cannot tell where its servos stand
@@ -29,8 +31,8 @@ class LimitedServoDriverTest : public ::testing::Test {
     tilt.min_deg = -30;
     tilt.max_deg = 10;
     tilt.park_deg = -5;
-    driver_ = std::make_unique<LimitedServoDriver>(std::move(fake), pan, tilt,
-                                                   [this] { return now_us_; });
+    driver_ = std::make_unique<LimitedServoDriver>(
+        std::move(fake), pan, tilt, [this] { return now_us_; }, frame_period_s);
   }
   // Opens and sends the first command, which puts both axes at park.
   void OpenDriver() {
@@ -45,6 +47,12 @@ class LimitedServoDriverTest : public ::testing::Test {
   std::unique_ptr<LimitedServoDriver> driver_;
 };
 
+// The same at 30 frames/s: one step is at most 120 deg/s · 1/30 s = 4 deg.
+class LimitedServoDriverStepTest : public LimitedServoDriverTest {
+ protected:
+  LimitedServoDriverStepTest() : LimitedServoDriverTest(1.0 / 30) {}
+};
+
 TEST_F(LimitedServoDriverTest, OpenMovesNothing) {
   std::string error;
   ASSERT_TRUE(driver_->Open(&error)) << error;
@@ -53,7 +61,7 @@ TEST_F(LimitedServoDriverTest, OpenMovesNothing) {
   EXPECT_FALSE(driver_->AtPark());
 }
 
-TEST_F(LimitedServoDriverTest, FirstCommandAfterOpenGoesToParkWhateverItAsks) {
+TEST_F(LimitedServoDriverStepTest, FirstCommandAfterOpenGoesToParkWhateverItAsks) {
   std::string error;
   ASSERT_TRUE(driver_->Open(&error)) << error;
   Advance(1);
@@ -64,7 +72,7 @@ TEST_F(LimitedServoDriverTest, FirstCommandAfterOpenGoesToParkWhateverItAsks) {
   EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kTilt), -5 + 120.0 / 30);  // one frame's step
 }
 
-TEST_F(LimitedServoDriverTest, OpenOnADeviceThatTellsItsPositionSlewsFromThere) {
+TEST_F(LimitedServoDriverStepTest, OpenOnADeviceThatTellsItsPositionSlewsFromThere) {
   fake_->SetReadable(true);
   fake_->MoveOnItsOwn(30, 0);
   std::string error;
@@ -75,7 +83,7 @@ TEST_F(LimitedServoDriverTest, OpenOnADeviceThatTellsItsPositionSlewsFromThere) 
   EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 30 - 120.0 / 30);
 }
 
-TEST_F(LimitedServoDriverTest, AfterAnyGapOneStepIsAtMostRateTimesFramePeriod) {
+TEST_F(LimitedServoDriverStepTest, AfterAnyGapOneStepIsAtMostRateTimesFramePeriod) {
   OpenDriver();
   Advance(3600);  // an hour without a command
   ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 45, nullptr));
@@ -83,11 +91,11 @@ TEST_F(LimitedServoDriverTest, AfterAnyGapOneStepIsAtMostRateTimesFramePeriod) {
   EXPECT_DOUBLE_EQ(driver_->max_step_deg(ServoAxis::kPan), 4);
 }
 
-TEST_F(LimitedServoDriverTest, ReopenSlewsBackFromWhereTheDeviceMovedTheServos) {
+TEST_F(LimitedServoDriverStepTest, ReopenSlewsBackFromWhereTheDeviceMovedTheServos) {
   fake_->SetReadable(true);
   OpenDriver();
   for (int i = 0; i < 20; ++i) {
-    Advance(1.0 / 30);
+    Advance(0.05);
     ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
   }
   ASSERT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 40);
@@ -97,7 +105,7 @@ TEST_F(LimitedServoDriverTest, ReopenSlewsBackFromWhereTheDeviceMovedTheServos) 
   std::string error;
   ASSERT_TRUE(driver_->Reopen(&error)) << error;
   EXPECT_EQ(driver_->angle(ServoAxis::kPan), 0);
-  Advance(1.0 / 30);
+  Advance(0.05);
   ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
   EXPECT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 4);
 }
@@ -111,10 +119,10 @@ TEST_F(LimitedServoDriverTest, ReopenMovesNothing) {
   EXPECT_EQ(fake_->commands().size(), before);
 }
 
-TEST_F(LimitedServoDriverTest, ParkAndWaitSlewsToParkOneFramePeriodPerStep) {
+TEST_F(LimitedServoDriverStepTest, ParkAndWaitSlewsToParkOneFramePeriodPerStep) {
   OpenDriver();
   for (int i = 0; i < 20; ++i) {
-    Advance(1.0 / 30);
+    Advance(0.05);
     ASSERT_TRUE(driver_->SetAngle(ServoAxis::kPan, 40, nullptr));
   }
   ASSERT_DOUBLE_EQ(fake_->angle(ServoAxis::kPan), 40);

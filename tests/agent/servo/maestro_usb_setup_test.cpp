@@ -25,7 +25,7 @@ int Count(const FakeMaestroUsbPort::State& state, std::uint8_t request) {
 }
 
 TEST(MaestroUsbSetupTest, FactorySettingsAreWrittenReinitializedAndVerified) {
-  FakeMaestroUsbPort::State state;  // factory: timeout off, homes off (all 0)
+  FakeMaestroUsbPort::State state;  // factory: timeout off, homes off, UART detect baud rate
   FakeMaestroUsbPort port(&state);
   const MaestroUsbSetupResult result = ApplyMaestroUsbSettings(port, Settings());
   EXPECT_TRUE(result.ok) << result.message;
@@ -33,14 +33,30 @@ TEST(MaestroUsbSetupTest, FactorySettingsAreWrittenReinitializedAndVerified) {
   EXPECT_EQ(state.eeprom[6], 30);
   EXPECT_EQ(state.eeprom[30], 6000);
   EXPECT_EQ(state.eeprom[39], 5800);
-  EXPECT_EQ(Count(state, maestro::kRequestSetParameter), 3);
+  EXPECT_EQ(state.eeprom[maestro::kParameterSerialMode], maestro::kSerialModeUsbDualPort);
+  EXPECT_EQ(Count(state, maestro::kRequestSetParameter), 4);
   EXPECT_EQ(Count(state, maestro::kRequestReinitialize), 1);
-  EXPECT_EQ(Count(state, maestro::kRequestGetParameter), 6);  // before and after
-  EXPECT_FALSE(state.open);                                   // closed again
+  // 4 before and 4 after writing, then each channel's Min and Max.
+  EXPECT_EQ(Count(state, maestro::kRequestGetParameter), 12);
+  EXPECT_FALSE(state.open);  // closed again
   EXPECT_NE(result.message.find("serial timeout 300 ms (30)"), std::string::npos) << result.message;
   EXPECT_NE(result.message.find("channel 1 home off (0) → 1450 µs (5800)"), std::string::npos)
       << result.message;
   EXPECT_NE(result.message.find("verified"), std::string::npos) << result.message;
+}
+
+TEST(MaestroUsbSetupTest, EachChannelsOwnMinAndMaxAreReadInMicroseconds) {
+  FakeMaestroUsbPort::State state;
+  state.eeprom[maestro::kParameterServo0Max + 9] = 150;  // channel 1 Max 2400 µs
+  FakeMaestroUsbPort port(&state);
+  const MaestroUsbSetupResult result = ApplyMaestroUsbSettings(port, Settings());
+  ASSERT_TRUE(result.ok) << result.message;
+  ASSERT_EQ(result.ranges.size(), 2u);
+  EXPECT_EQ(result.ranges[0].channel, 0);
+  EXPECT_DOUBLE_EQ(result.ranges[0].min_us, 992);
+  EXPECT_DOUBLE_EQ(result.ranges[0].max_us, 2000);
+  EXPECT_EQ(result.ranges[1].channel, 1);
+  EXPECT_DOUBLE_EQ(result.ranges[1].max_us, 2400);
 }
 
 TEST(MaestroUsbSetupTest, MatchingSettingsAreNotRewritten) {

@@ -82,5 +82,13 @@ TEST(Pca9685RegistersTest, InitWaitsForTheOscillatorAfterWaking) {
   EXPECT_GE(waited_us, 500);
 }
 
+TEST(Pca9685RegistersTest, TicksBackToPulseInvertPulseTicksWithinOneTick) {
+  const int prescale = PreScale(25e6, 50);
+  for (const double pulse_us : {900.0, 1500.0, 2100.0}) {
+    const int ticks = PulseTicks(pulse_us, 25e6, prescale);
+    EXPECT_NEAR(TicksPulseUs(ticks, 25e6, prescale), pulse_us, 4.88 / 2 + 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace kapfix::agent::pca9685
