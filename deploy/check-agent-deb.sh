@@ -24,12 +24,20 @@ pass() { echo "check-agent-deb: PASS: $*"; }
 
 # 1. The package, built by CPack (agent component only).
 out=$(mktemp -d /tmp/kapfix-deb.XXXXXX)
-(cd "$build" && cpack -G DEB -B "$out" >/dev/null)
+# --package-only (CI, everything built): every package; else the agent's alone.
+if [ "$package_only" = 1 ]; then
+  (cd "$build" && cpack -G DEB -B "$out" >/dev/null)
+else
+  (cd "$build" && cpack -G DEB -D CPACK_COMPONENTS_ALL=agent -B "$out" >/dev/null)
+fi
 deb=$(ls "$out"/kapfix-agent_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "check-agent-deb: $(basename "$deb"): Depends: $depends"
-if grep -Eiq 'qt|libgl|g\+\+|gcc-[0-9]|clang|-dev\b' <<<"$depends"; then
-  fail "the agent package depends on a GUI or build package"
+# Each package name (versions and alternatives stripped) against GUI and toolchain packages.
+bad=$(tr ',|' '\n\n' <<<"$depends" | sed -E 's/\(.*//; s/^ *//; s/ *$//' |
+      grep -Ei '^(libqt|qt[0-9]|libgl1|libgl-|libx11|g\+\+|gcc(-[0-9]+)?$|cpp|clang|cmake)|-dev$' || true)
+if [ -n "$bad" ]; then
+  fail "the agent package depends on GUI or build packages: $(echo $bad)"
 fi
 pass "runtime dependencies only (no Qt, no compiler)"
 if [ "$package_only" = 1 ]; then
@@ -54,8 +62,9 @@ chroot "$root" apt-get install -y -q "/tmp/$(basename "$deb")" >/dev/null
 pass "installed into a clean $suite root"
 
 # 3. Keys and configuration.
-[ "$(stat -c '%U %a' "$root/etc/kapfix/agent.key")" = "kapfix 600" ] ||
-  fail "agent.key is $(stat -c '%U %a' "$root/etc/kapfix/agent.key"), want kapfix 600"
+# Owner by name inside the root (its own /etc/passwd), not the host's.
+key_owner=$(chroot "$root" stat -c '%U %a' /etc/kapfix/agent.key)
+[ "$key_owner" = "kapfix 600" ] || fail "agent.key is $key_owner, want kapfix 600"
 [ -f "$root/etc/kapfix/agent.pub" ] || fail "no agent.pub"
 [ -f "$root/etc/kapfix/authorized_keys" ] || fail "no authorized_keys"
 grep -q '"/etc/kapfix/agent.key"' "$root/etc/kapfix/agent.json" ||
