@@ -58,6 +58,8 @@ echo "check-agent-deb: clean root ready after $(( $(date +%s) - start )) s"
 mount -t proc proc "$root/proc"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 cp "$deb" "$root/tmp/"
+# A board runs systemd (minbase has none): it is there before the package, as on a board.
+chroot "$root" apt-get install -y -q systemd >/dev/null
 chroot "$root" apt-get install -y -q "/tmp/$(basename "$deb")" >/dev/null
 pass "installed into a clean $suite root"
 
