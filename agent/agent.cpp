@@ -222,6 +222,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   if (simulated_) pipeline.park_wait = [] {};  // simulated time: no wall-clock wait
   notifier_ = std::make_unique<SystemdNotifier>();
   pipeline.on_alive = [notifier = notifier_.get()] { notifier->Alive(); };
+  pipeline.on_status = [notifier = notifier_.get()](const std::string& status) {
+    notifier->Status(status);
+  };
 
   StreamPublisherOptions publisher_options;
   publisher_options.bind_endpoint = config_.link.stream_address;

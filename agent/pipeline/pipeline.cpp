@@ -82,6 +82,9 @@ void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
 }
 
 bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
+  if (options_.on_status) {
+    options_.on_status((at_start ? "waiting for the camera: " : "camera lost: ") + reason);
+  }
   if (at_start) {
     spdlog::warn(
         "camera not there: {}; waiting for it (retrying with back-off, the servos are "
@@ -105,6 +108,7 @@ bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
       if (options_.on_camera_open) options_.on_camera_open(source_);
       spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0, attempt,
                    source_.Describe());
+      if (options_.on_status) options_.on_status("camera open: " + source_.Describe());
       return true;
     }
     spdlog::warn("camera reconnect attempt {} failed: {}; next in {} ms", attempt, error,

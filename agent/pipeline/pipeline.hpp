@@ -50,6 +50,9 @@ struct PipelineOptions {
   std::function<void(FrameSource&)> on_camera_open;
   // Called on every control step and every reconnect wait: the service manager's watchdog.
   std::function<void()> on_alive;
+  // One line on what the camera is doing ("waiting for the camera: …", "camera lost: …",
+  // "camera open: …"), for the service manager's status (systemctl status).
+  std::function<void(const std::string&)> on_status;
   // Between the steps of the final park (one frame period at the rate limit each); default:
   // sleep default_frame_period_s. Simulated time needs no wait.
   std::function<void()> park_wait;

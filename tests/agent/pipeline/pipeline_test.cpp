@@ -141,6 +141,35 @@ TEST(PipelineTest, NoStallNoPark) {
   EXPECT_EQ(pipeline.Run().watchdog_stalls, 0u);
 }
 
+// Start-up that waits for hardware (issue 10): a camera that did not open at start is opened
+// by the pipeline with back-off, said in the status, and the flight starts once it is there;
+// the servos get their first command only with its first frame.
+TEST(PipelineTest, ACameraMissingAtStartIsWaitedForThenFlown) {
+  Rig rig;
+  rig.source->FailOpen(true);
+  ScriptedProcessor processor;
+  PipelineOptions options;
+  options.frames = 5;
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  options.camera_open = false;
+  std::vector<std::string> statuses;
+  std::atomic<int> waits{0};
+  options.on_status = [&statuses](const std::string& status) { statuses.push_back(status); };
+  // The camera comes up after a few reconnect waits.
+  options.on_alive = [&waits, &rig] {
+    if (++waits == 20) rig.source->FailOpen(false);
+  };
+  const std::size_t commands_before = rig.fake->commands().size();
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 5u);
+  ASSERT_GE(statuses.size(), 2u);
+  EXPECT_TRUE(statuses.front().starts_with("waiting for the camera: ")) << statuses.front();
+  EXPECT_TRUE(statuses.back().starts_with("camera open: ")) << statuses.back();
+  EXPECT_GT(rig.fake->commands().size(), commands_before);
+}
+
 TEST(PipelineTest, ALostCameraIsReopenedAndTheFlightResumes) {
   Rig rig;
   ScriptedProcessor processor;
