@@ -2,7 +2,11 @@
 // the watchdog parks the servos when a control step stalls.
 #include "agent/pipeline/pipeline.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -11,6 +15,9 @@
 #include "agent/capture/fake_frame_source.hpp"
 #include "agent/pipeline/telemetry_recorder.hpp"
 #include "agent/servo/fake_servo_driver.hpp"
+#include "agent/servo/maestro_servo_driver.hpp"
+#include "agent/servo/maestro_usb_settings.hpp"
+#include "tests/agent/support/fake_maestro_usb_port.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -168,6 +175,58 @@ TEST(PipelineTest, ACameraMissingAtStartIsWaitedForThenFlown) {
   EXPECT_TRUE(statuses.front().starts_with("waiting for the camera: ")) << statuses.front();
   EXPECT_TRUE(statuses.back().starts_with("camera open: ")) << statuses.back();
   EXPECT_GT(rig.fake->commands().size(), commands_before);
+}
+
+// A Maestro that answers once and then wedges (nobody reads its port: the pseudo-terminal's
+// buffer fills and writes would block): each command gives up after write_timeout_ms, the
+// driver is out, its reopens (which time out too) run beside the loop, and the loop flies
+// every frame. Issue 10; a wedged write used to block the loop and the watchdog's park.
+TEST(PipelineTest, AWedgedMaestroNeverHoldsUpTheLoop) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const std::string path = ::ptsname(master);
+  std::thread maestro([master] {  // answers the first Get Errors, then never reads again
+    std::uint8_t byte = 0;
+    pollfd p{master, POLLIN, 0};
+    while (::poll(&p, 1, 5000) > 0 && ::read(master, &byte, 1) == 1) {
+      if (byte == 0xA1) {
+        const std::uint8_t none[2] = {0, 0};
+        (void)!::write(master, none, 2);
+        return;
+      }
+    }
+  });
+  MaestroServoDriverOptions maestro_options;
+  maestro_options.device = path;
+  maestro_options.answer_timeout_ms = 50;
+  maestro_options.write_timeout_ms = 5;
+  FakeMaestroUsbPort::State usb;
+  usb.eeprom[maestro::kParameterSerialMode] = maestro::kSerialModeUsbDualPort;
+  LimitedServoDriver servos(std::make_unique<MaestroServoDriver>(
+                                maestro_options, std::make_unique<FakeMaestroUsbPort>(&usb)),
+                            ServoLimits{}, ServoLimits{}, SteadyClockNowUs, 1.0 / 30);
+  std::string error;
+  ASSERT_TRUE(servos.Open(&error)) << error;
+  maestro.join();
+
+  FakeFrameSource source({cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(1))}, 1);
+  ASSERT_TRUE(source.Open(&error)) << error;
+  ScriptedProcessor processor;
+  TelemetryRecorder telemetry;
+  PipelineOptions options;
+  options.frames = 6000;  // 2 commands of 4 bytes a frame: the 20 kB buffer fills by ~2600
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  options.retry_max_ms = 10;
+  options.park_wait = [] {};
+  Pipeline pipeline(source, servos, processor, {&telemetry}, options);
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.processed, 6000u);
+  EXPECT_GE(stats.servo_outages, 1u) << "the port never wedged";
+  EXPECT_EQ(stats.servo_recoveries, 0u);  // it never answers again
+  ::close(master);
 }
 
 TEST(PipelineTest, ALostCameraIsReopenedAndTheFlightResumes) {
