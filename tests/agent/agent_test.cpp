@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 // resources/kite.json as shipped (its lenses defined by their optics), in simulation, with
 // its own state and photo folders and a private link.
 AgentConfig KiteJsonInTemp(const fs::path& base) {
+  fs::create_directories(base);  // the link's ipc files live there
   AgentConfig config;
   std::string error;
   EXPECT_TRUE(LoadAgentConfig(std::string(KAPFIX_RESOURCES_DIR) + "/kite.json", &config, &error))
@@ -58,6 +59,25 @@ TEST(AgentTest, RestartedWithAStoredCalibrationOfAnOpticalLensItAcceptsSettingsC
   const auto state = station.Exchange(request);
   ASSERT_TRUE(state.has_value());
   EXPECT_FLOAT_EQ(state->state().gains().p(), 0.75F);
+  fs::remove_all(base);
+}
+
+// A state lost on the link heals by itself: a station that subscribes after the last change
+// still gets the agent's state, without asking for it (StateRepublisher, about 1 Hz).
+TEST(AgentTest, AStationThatSubscribesLateGetsTheStateWithoutAsking) {
+  const fs::path base =
+      fs::temp_directory_path() / ("kapfix_agent_late_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  const AgentConfig config = KiteJsonInTemp(base);
+  Agent agent(config, {.simulate = true, .real_time = false, .frames = 1});
+  kapfix::testing::RawSubscriber station(agent.stream_endpoint(), {"heartbeat", "state"});
+  ASSERT_TRUE(station.Ready());
+  const auto payload = station.Next("state");
+  ASSERT_TRUE(payload.has_value()) << "no state within the wait";
+  kapfix::v1::AgentState state;
+  ASSERT_TRUE(state.ParseFromString(*payload));
+  EXPECT_EQ(state.header().agent_id(), config.agent_id);
+  EXPECT_GT(state.version(), 0u);
   fs::remove_all(base);
 }
 
