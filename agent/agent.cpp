@@ -237,7 +237,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   spdlog::default_logger()->sinks().push_back(log_publisher_);
   photo_store_ = std::make_unique<PhotoStore>(config_.photos.dir);
   photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
-    return state_ ? state_->settings().lens : config_.lens;
+    return state_ ? state_->settings()->lens : config_.lens;
   });
   photos_->SetInterval(config_.photos.interval_s);
   video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
@@ -250,8 +250,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   for (LensProfile& lens : config_.lenses) {
     std::string why;
     if (const auto stored = calibrations_->Load(lens.name, &why)) {
-      lens.deg_per_px_pan = stored->pan_deg_per_px;
-      lens.deg_per_px_tilt = stored->tilt_deg_per_px;
+      lens.ApplyCalibration(*stored);
       spdlog::info("lens {}: stored calibration {:.5f} / {:.5f} deg/px", lens.name,
                    stored->pan_deg_per_px, stored->tilt_deg_per_px);
     } else if (!why.empty()) {
@@ -261,6 +260,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   PhotoStore* store = photo_store_.get();
   state_ = std::make_unique<StateKeeper>(
       config_, *publisher_, simulated_, [store] { return store->count(); }, calibrations_.get());
+  state_republisher_ = std::make_unique<StateRepublisher>(*state_);
 
   ModeRunnerOptions modes;
   modes.start_mode = options_.start_mode;

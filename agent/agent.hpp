@@ -9,6 +9,7 @@
 #include "agent/commands/calibration_store.hpp"
 #include "agent/commands/command_executor.hpp"
 #include "agent/commands/state_keeper.hpp"
+#include "agent/commands/state_republisher.hpp"
 #include "agent/config/agent_config.hpp"
 #include "agent/downlink/log_publisher.hpp"
 #include "agent/downlink/telemetry_publisher.hpp"
@@ -118,6 +119,7 @@ class Agent {
   TelemetryRecorder telemetry_;
   std::unique_ptr<CalibrationStore> calibrations_;
   std::unique_ptr<StateKeeper> state_;
+  std::unique_ptr<StateRepublisher> state_republisher_;
   std::unique_ptr<ModeRunner> modes_;
   std::unique_ptr<Pipeline> pipeline_;
   std::unique_ptr<CommandExecutor> executor_;

@@ -35,8 +35,8 @@ kapfix::v1::Reply CommandExecutor::SetMode(const kapfix::v1::SetMode& set_mode) 
     return Refuse(kapfix::v1::ERROR_CODE_STORAGE,
                   "free-swing recording needs a recordings folder (photos.dir)");
   }
-  const AgentConfig settings = targets_.state.settings();
-  SwingDeadline deadline{settings.search.swing_frames, settings.search.swing_seconds};
+  const auto settings = targets_.state.settings();
+  SwingDeadline deadline{settings->search.swing_frames, settings->search.swing_seconds};
   if (set_mode.has_deadline_frames()) {
     deadline.frames = std::max(2, static_cast<int>(set_mode.deadline_frames()));
   }
@@ -47,26 +47,29 @@ kapfix::v1::Reply CommandExecutor::SetMode(const kapfix::v1::SetMode& set_mode) 
 }
 
 kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& command) {
-  AgentConfig settings = targets_.state.settings();
   std::string error;
-  if (!ApplySettingsCommand(command, &settings, &error)) {
-    return Refuse(kapfix::v1::ERROR_CODE_OUT_OF_RANGE, error);
-  }
+  // Applied to the keeper's settings under its lock: a calibration that finishes meanwhile
+  // is kept.
+  const auto settings = targets_.state.UpdateSettings(
+      [&command](AgentConfig* config, std::string* why) {
+        return ApplySettingsCommand(command, config, why);
+      },
+      &error);
+  if (!settings) return Refuse(kapfix::v1::ERROR_CODE_OUT_OF_RANGE, error);
   switch (command.command_case()) {
     case kapfix::v1::Command::kSetCamera:
-      if (targets_.apply_camera) targets_.apply_camera(settings.camera);
+      if (targets_.apply_camera) targets_.apply_camera(settings->camera);
       break;
     case kapfix::v1::Command::kSetVideo:
-      targets_.video.SetSettings(settings.video);
+      targets_.video.SetSettings(settings->video);
       break;
     case kapfix::v1::Command::kSetPhotoIntervalS:
-      targets_.photos.SetInterval(settings.photos.interval_s);
+      targets_.photos.SetInterval(settings->photos.interval_s);
       break;
     default:
-      targets_.modes.RequestSettings(settings);
+      targets_.modes.RequestSettings(*settings);
       break;
   }
-  targets_.state.SetSettings(std::move(settings));
   return Ok();
 }
 

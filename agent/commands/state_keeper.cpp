@@ -10,13 +10,13 @@ namespace kapfix::agent {
 StateKeeper::StateKeeper(AgentConfig settings, StreamSink& sink, bool simulated,
                          std::function<std::uint64_t()> photos_stored,
                          const CalibrationStore* calibrations)
-    : settings_(std::move(settings)),
+    : settings_(std::make_shared<const AgentConfig>(std::move(settings))),
       sink_(sink),
       simulated_(simulated),
       photos_stored_(std::move(photos_stored)),
       calibrations_(calibrations) {}
 
-AgentConfig StateKeeper::settings() const {
+std::shared_ptr<const AgentConfig> StateKeeper::settings() const {
   std::lock_guard lock(mutex_);
   return settings_;
 }
@@ -24,22 +24,39 @@ AgentConfig StateKeeper::settings() const {
 void StateKeeper::SetSettings(AgentConfig settings) {
   {
     std::lock_guard lock(mutex_);
-    settings_ = std::move(settings);
+    settings_ = std::make_shared<const AgentConfig>(std::move(settings));
+    ChangedLocked();
   }
   PublishState();
 }
 
+std::shared_ptr<const AgentConfig> StateKeeper::UpdateSettings(
+    const std::function<bool(AgentConfig*, std::string*)>& change, std::string* error) {
+  std::shared_ptr<const AgentConfig> updated;
+  {
+    std::lock_guard lock(mutex_);
+    AgentConfig copy = *settings_;
+    if (!change(&copy, error)) return nullptr;
+    updated = std::make_shared<const AgentConfig>(std::move(copy));
+    settings_ = updated;
+    ChangedLocked();
+  }
+  PublishState();
+  return updated;
+}
+
 kapfix::v1::AgentState StateKeeper::StateLocked() const {
   kapfix::v1::AgentState state;
-  state.mutable_header()->set_agent_id(settings_.agent_id);
+  state.mutable_header()->set_agent_id(settings_->agent_id);
   state.set_mode(ToProto(mode_));
-  FillSettings(settings_, &state);
+  FillSettings(*settings_, &state);
   state.set_slice(static_cast<std::uint32_t>(slice_));
   if (calibration_) *state.mutable_calibration() = *calibration_;
   if (last_slice_report_) *state.mutable_last_slice_report() = *last_slice_report_;
   if (last_pss_report_) *state.mutable_last_pss_report() = *last_pss_report_;
   state.set_simulated(simulated_);
   state.set_agent_version(KAPFIX_VERSION);  // the project version, from CMake
+  state.set_version(version_);
   return state;
 }
 
@@ -54,7 +71,35 @@ kapfix::v1::AgentState StateKeeper::State() const {
   return state;
 }
 
-void StateKeeper::PublishState() { sink_.Publish(State()); }
+void StateKeeper::PublishState() {
+  {
+    std::lock_guard lock(mutex_);
+    publish_wanted_ = true;
+    if (publishing_) return;  // that thread publishes the newest state before it stops
+    publishing_ = true;
+  }
+  // Clears publishing_ however the loop ends (a sink that throws must not stop all later
+  // states).
+  struct Done {
+    StateKeeper& keeper;
+    ~Done() {
+      std::lock_guard lock(keeper.mutex_);
+      keeper.publishing_ = false;
+    }
+  } done{*this};
+  for (;;) {
+    kapfix::v1::AgentState state;
+    {
+      std::lock_guard lock(mutex_);
+      if (!publish_wanted_) return;
+      publish_wanted_ = false;
+      state = StateLocked();
+    }
+    // Outside the lock: it may read the disk.
+    if (photos_stored_) state.set_photos_stored(photos_stored_());
+    sink_.Publish(state);
+  }
+}
 
 bool StateKeeper::RepublishSliceReport() {
   std::optional<kapfix::v1::SliceReport> report;
@@ -72,6 +117,7 @@ void StateKeeper::OnModeChanged(AgentMode mode, int slice) {
     std::lock_guard lock(mutex_);
     mode_ = mode;
     slice_ = slice;
+    ChangedLocked();
   }
   PublishState();
 }
@@ -80,6 +126,7 @@ void StateKeeper::OnSliceReport(const kapfix::v1::SliceReport& report) {
   if (report.finished()) {
     std::lock_guard lock(mutex_);
     last_slice_report_ = report;
+    ChangedLocked();
   }
   sink_.Publish(report);
 }
@@ -88,6 +135,7 @@ void StateKeeper::OnPssReport(const kapfix::v1::PssReport& report) {
   if (report.finished()) {
     std::lock_guard lock(mutex_);
     last_pss_report_ = report;
+    ChangedLocked();
   }
   sink_.Publish(report);
 }
@@ -97,16 +145,13 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
   if (report.finished()) {
     std::lock_guard lock(mutex_);
     calibration_ = report;
+    ChangedLocked();
     if (applied) {
-      for (LensProfile& profile : settings_.lenses) {
-        if (profile.name != report.lens_profile()) continue;
-        profile.deg_per_px_pan = applied->pan_deg_per_px;
-        profile.deg_per_px_tilt = applied->tilt_deg_per_px;
-        // The calibration replaces what the optics said: a profile holds one form or the other
-        // (LensProfile::IsValid), or every later settings command would be refused.
-        profile.focal_mm = 0;
-        profile.pixel_pitch_um = 0;
+      AgentConfig calibrated = *settings_;
+      for (LensProfile& profile : calibrated.lenses) {
+        if (profile.name == report.lens_profile()) profile.ApplyCalibration(*applied);
       }
+      settings_ = std::make_shared<const AgentConfig>(std::move(calibrated));
     }
   }
   if (report.finished() && applied && calibrations_) {

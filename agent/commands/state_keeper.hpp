@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 
@@ -16,6 +17,12 @@ namespace kapfix::agent {
 // the command side changes and the modes report into. Publishes the reports as they come and
 // the AgentState after every change, so a station that (re)connects is resynchronised by one
 // request_state. Thread-safe.
+//
+// States are published in version order: every change raises AgentState.version, and one
+// thread at a time publishes, always the newest state. A thread that wants a state published
+// while another is publishing does not wait: it leaves the newest state to that thread, which
+// publishes again before it stops (so the control thread never waits on a command's publish,
+// and an older snapshot can never be the last one sent).
 class StateKeeper : public ModeEvents {
  public:
   // `photos_stored` counts the photos on the agent's disk when a state is made.
@@ -24,9 +31,17 @@ class StateKeeper : public ModeEvents {
               std::function<std::uint64_t()> photos_stored,
               const CalibrationStore* calibrations = nullptr);
 
-  AgentConfig settings() const;
+  // The settings now: an immutable snapshot that stays as it is while the keeper moves on.
+  std::shared_ptr<const AgentConfig> settings() const;
   void SetSettings(AgentConfig settings);  // must be IsValid; publishes the new state
+  // Applies `change` to a copy of the settings under the keeper's lock, so that no other
+  // change (a calibration finishing on the control thread) is lost in between; stores and
+  // publishes the result when `change` returns true. The new snapshot, or nullptr with
+  // `change`'s reason in `error`.
+  std::shared_ptr<const AgentConfig> UpdateSettings(
+      const std::function<bool(AgentConfig*, std::string*)>& change, std::string* error);
   kapfix::v1::AgentState State() const;
+  // Publishes the current state (again, with the same version when nothing changed).
   void PublishState();
   // Publishes the latest SliceReport again (request_state.resend_slice_report); false if SSP
   // never ran.
@@ -41,9 +56,11 @@ class StateKeeper : public ModeEvents {
 
  private:
   kapfix::v1::AgentState StateLocked() const;
+  // Under mutex_: every change of what State() reports raises the version.
+  void ChangedLocked() { ++version_; }
 
   mutable std::mutex mutex_;
-  AgentConfig settings_;
+  std::shared_ptr<const AgentConfig> settings_;  // replaced, never changed in place
   StreamSink& sink_;
   bool simulated_;
   std::function<std::uint64_t()> photos_stored_;
@@ -53,6 +70,9 @@ class StateKeeper : public ModeEvents {
   std::optional<kapfix::v1::SliceReport> last_slice_report_;
   std::optional<kapfix::v1::PssReport> last_pss_report_;
   std::optional<kapfix::v1::CalibrationReport> calibration_;
+  std::uint64_t version_ = 1;    // [count] of the state as it is now
+  bool publishing_ = false;      // a thread is in PublishState's loop
+  bool publish_wanted_ = false;  // a state was asked for since that thread's last snapshot
 };
 
 }  // namespace kapfix::agent

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
+
 namespace kapfix::agent {
 
 std::optional<CameraBackend> ParseCameraBackend(std::string_view text) {
@@ -37,13 +40,14 @@ bool CameraConfig::IsValid(std::string* error) const {
   if (!std::isfinite(fps) || fps <= 0 || fps > 1000) {
     return fail("camera.fps: must be in (0, 1000], got " + std::to_string(fps));
   }
-  if (gain_db && (!std::isfinite(*gain_db) || std::abs(*gain_db) > 1000)) {
-    return fail("camera.gain_db: must be finite and within ±1000, got " + std::to_string(*gain_db));
-  }
-  if (exposure_us && (!std::isfinite(*exposure_us) || *exposure_us <= 0 || *exposure_us > 10e6)) {
-    return fail("camera.exposure_us: must be in (0, 1e7] µs, got " + std::to_string(*exposure_us));
-  }
+  // The ranges are the schema's (kapfix.v1.CameraSettings), shared with the command validator.
+  const auto& settings = *kapfix::v1::CameraSettings::descriptor();
   std::string reason;
+  if (gain_db) reason = kapfix::v1::CheckSetting(settings, "gain_db", *gain_db, "camera.gain_db");
+  if (reason.empty() && exposure_us) {
+    reason = kapfix::v1::CheckSetting(settings, "exposure_us", *exposure_us, "camera.exposure_us");
+  }
+  if (!reason.empty()) return fail(reason);
   if (backend == CameraBackend::kV4l2 && !ToV4l2Options().IsValid(&reason)) {
     return fail("camera: " + reason);
   }

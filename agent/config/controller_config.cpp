@@ -1,6 +1,7 @@
 #include "agent/config/controller_config.hpp"
 
-#include <cmath>
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -24,21 +25,18 @@ std::string_view ToString(ControllerKind kind) {
 }
 
 bool ControllerConfig::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  auto in = [](double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; };
-  if (!in(kp, 0, 10) || kp == 0)
-    return fail("controller.kp: must be in (0, 10], got " + std::to_string(kp));
-  if (!in(ki, 0, 10)) return fail("controller.ki: must be 0…10, got " + std::to_string(ki));
-  if (!in(kd, 0, 10)) return fail("controller.kd: must be 0…10, got " + std::to_string(kd));
-  if (!in(dead_band_px, 0, 50)) {
-    return fail("controller.dead_band_px: must be 0…50 px, got " + std::to_string(dead_band_px));
-  }
-  if (!in(max_rate_deg_per_s, 0, 1000) || max_rate_deg_per_s == 0) {
-    return fail("controller.max_rate_deg_per_s: must be in (0, 1000], got " +
-                std::to_string(max_rate_deg_per_s));
+  // The ranges are the schema's (kapfix.v1.Gains), shared with the command validator.
+  const auto& gains = *kapfix::v1::Gains::descriptor();
+  for (const auto& [field, value, name] :
+       {std::tuple{"p", kp, "controller.kp"}, std::tuple{"i", ki, "controller.ki"},
+        std::tuple{"d", kd, "controller.kd"},
+        std::tuple{"dead_band_px", dead_band_px, "controller.dead_band_px"},
+        std::tuple{"rate_limit_deg_per_s", max_rate_deg_per_s, "controller.max_rate_deg_per_s"}}) {
+    std::string reason = kapfix::v1::CheckSetting(gains, field, value, name);
+    if (!reason.empty()) {
+      if (error) *error = std::move(reason);
+      return false;
+    }
   }
   return true;
 }

@@ -21,12 +21,12 @@ std::string_view ToString(ControllerKind kind);
 struct ControllerConfig {
   ControllerKind kind = ControllerKind::kPredictive;
   double kp = 0.8;                 // [1] share of the error corrected per frame
-  double ki = 0.0;                 // [1/frame] pid, predictive
-  double kd = 0.0;                 // [frame] pid, predictive
+  double ki = 0.0;                 // [1/s] pid, predictive
+  double kd = 0.0;                 // [s] pid, predictive
   double dead_band_px = 0.5;       // [px] displacements below this are not corrected
   double max_rate_deg_per_s = 90;  // [deg/s] controller output slew (servo limits still cap)
 
-  // Gains 0…10 (kp > 0), dead band 0…50 px, rate in (0, 1000] deg/s, all finite.
+  // Every value within its field's range in the settings schema (kapfix.v1.Gains).
   bool IsValid(std::string* error) const;
 };
 

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -29,19 +32,26 @@ bool LensProfile::IsValid(std::string* error) const {
     return fail("give either deg_per_px_pan and deg_per_px_tilt, or focal_mm and pixel_pitch_um");
   }
   if (direct) {
-    if (!Positive(deg_per_px_pan) || !Positive(deg_per_px_tilt) || deg_per_px_pan > 10 ||
-        deg_per_px_tilt > 10) {
-      return fail("deg_per_px_pan and deg_per_px_tilt must both be in (0, 10] deg/px");
+    if (!Positive(std::abs(deg_per_px_pan)) || !Positive(std::abs(deg_per_px_tilt)) ||
+        std::abs(deg_per_px_pan) > 10 || std::abs(deg_per_px_tilt) > 10) {
+      return fail("deg_per_px_pan and deg_per_px_tilt must both be non-zero with |deg/px| ≤ 10");
     }
     return true;
   }
-  if (!Positive(focal_mm) || focal_mm < 0.5 || focal_mm > 500) {
-    return fail("focal_mm must be 0.5…500 mm, got " + std::to_string(focal_mm));
+  // The ranges are the schema's (kapfix.v1.LensProfile), shared with the command validator.
+  const auto& optics = *kapfix::v1::LensProfile::descriptor();
+  std::string reason = kapfix::v1::CheckSetting(optics, "focal_length_mm", focal_mm, "focal_mm");
+  if (reason.empty()) {
+    reason = kapfix::v1::CheckSetting(optics, "pixel_pitch_um", pixel_pitch_um, "pixel_pitch_um");
   }
-  if (!Positive(pixel_pitch_um) || pixel_pitch_um < 0.5 || pixel_pitch_um > 200) {
-    return fail("pixel_pitch_um must be 0.5…200 µm, got " + std::to_string(pixel_pitch_um));
-  }
-  return true;
+  return reason.empty() || fail(reason);
+}
+
+void LensProfile::ApplyCalibration(const LensCalibration& calibration) {
+  deg_per_px_pan = calibration.pan_deg_per_px;
+  deg_per_px_tilt = calibration.tilt_deg_per_px;
+  focal_mm = 0;
+  pixel_pitch_um = 0;
 }
 
 double LensProfile::DegPerPxPan() const {

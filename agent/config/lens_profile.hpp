@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "common/control/lens_calibration.hpp"
+
 namespace kapfix::agent {
 
 // How far the view turns per pixel, per axis, for one lens (SPEC §2.7: calibration is stored
@@ -15,9 +17,15 @@ struct LensProfile {
   double focal_mm = 0;         // [mm]
   double pixel_pitch_um = 0;   // [µm] per frame pixel
 
-  // A name, and exactly one of the two forms with positive, finite values (deg_per_px ≤ 10,
-  // focal 0.5…500 mm, pitch 0.5…200 µm).
+  // A name, and exactly one of the two forms with finite values: deg/px non-zero with
+  // |deg/px| ≤ 10 (negative: a servo mounted the other way, as a calibration can measure),
+  // or focal 0.5…500 mm and pitch 0.5…200 µm.
   bool IsValid(std::string* error) const;
+
+  // The one way a measured calibration enters a profile (at start-up from the calibration
+  // store, and when a calibration run finishes): its deg/px replace what the optics said, and
+  // the optics are cleared, since a profile holds one form or the other (IsValid).
+  void ApplyCalibration(const LensCalibration& calibration);
 
   // [deg/px] given, or the angle one pixel subtends at the optical centre:
   // atan(pitch / focal) (same for both axes: square pixels).

@@ -1,6 +1,7 @@
 #include "agent/config/photo_config.hpp"
 
-#include <cmath>
+#include "kapfix/v1/command.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -9,11 +10,11 @@ bool PhotoConfig::IsValid(std::string* error) const {
     if (error) *error = "photos.dir: must not be empty";
     return false;
   }
-  if (!std::isfinite(interval_s) || (interval_s != 0 && (interval_s < 0.1 || interval_s > 86400))) {
-    if (error) {
-      *error =
-          "photos.interval_s: must be 0 (off) or 0.1…86400 s, got " + std::to_string(interval_s);
-    }
+  // The range is the schema's (Command.set_photo_interval_s).
+  std::string reason = kapfix::v1::CheckSetting(
+      *kapfix::v1::Command::descriptor(), "set_photo_interval_s", interval_s, "photos.interval_s");
+  if (!reason.empty()) {
+    if (error) *error = std::move(reason);
     return false;
   }
   return true;

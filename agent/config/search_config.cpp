@@ -1,6 +1,11 @@
 #include "agent/config/search_config.hpp"
 
 #include <algorithm>
+#include <tuple>
+
+#include "kapfix/v1/command.pb.h"
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -16,21 +21,22 @@ bool SearchConfig::IsValid(std::string* error) const {
   }
   std::string reason;
   if (!sampling.IsValid(&reason)) return fail("search.sampling: " + reason);
-  if (patch_px < 8 || patch_px > 1000) {
-    return fail("search.patch_px: must be 8…1000 px, got " + std::to_string(patch_px));
-  }
-  if (slices < 1 || slices > 64) {
-    return fail("search.slices: must be 1…64, got " + std::to_string(slices));
-  }
-  if (!(dc_hysteresis_px >= 0 && dc_hysteresis_px <= 100)) {
-    return fail("search.dc_hysteresis_px: must be 0…100 px, got " +
-                std::to_string(dc_hysteresis_px));
-  }
-  if (swing_frames < 2 || swing_frames > 100000) {
-    return fail("search.swing_frames: must be 2…100000, got " + std::to_string(swing_frames));
-  }
-  if (!(swing_seconds >= 0.1 && swing_seconds <= 3600)) {
-    return fail("search.swing_seconds: must be 0.1…3600 s, got " + std::to_string(swing_seconds));
+  // The ranges are the schema's (kapfix.v1.SearchSettings, and SetMode's deadlines for the
+  // default swing deadline), shared with the command validator.
+  const auto& search = *kapfix::v1::SearchSettings::descriptor();
+  const auto& set_mode = *kapfix::v1::SetMode::descriptor();
+  for (const auto& [message, field, value, name] : {
+           std::tuple{&search, "patch_size_px", static_cast<double>(patch_px), "search.patch_px"},
+           std::tuple{&search, "slice_count", static_cast<double>(slices), "search.slices"},
+           std::tuple{&search, "search_range_px", static_cast<double>(range_px), "search.range_px"},
+           std::tuple{&search, "dc_hysteresis_px", dc_hysteresis_px, "search.dc_hysteresis_px"},
+           std::tuple{&search, "random_fraction", sampling.fraction, "search.sampling"},
+           std::tuple{&set_mode, "deadline_frames", static_cast<double>(swing_frames),
+                      "search.swing_frames"},
+           std::tuple{&set_mode, "deadline_s", swing_seconds, "search.swing_seconds"},
+       }) {
+    reason = kapfix::v1::CheckSetting(*message, field, value, name);
+    if (!reason.empty()) return fail(reason);
   }
   SearchOptions options;
   options.range = range_px;

@@ -1,22 +1,22 @@
 #include "agent/config/video_config.hpp"
 
-#include <cmath>
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
 bool VideoConfig::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (!std::isfinite(fps) || fps < 0 || fps > 120) {
-    return fail("video.fps: must be 0…120 frames/s, got " + std::to_string(fps));
-  }
-  if (quality < 1 || quality > 100) {
-    return fail("video.quality: must be 1…100, got " + std::to_string(quality));
-  }
-  if (!std::isfinite(scale) || scale <= 0 || scale > 1) {
-    return fail("video.scale: must be in (0, 1], got " + std::to_string(scale));
+  // The ranges are the schema's (kapfix.v1.VideoSettings), shared with the command validator.
+  const auto& video = *kapfix::v1::VideoSettings::descriptor();
+  for (const auto& [field, value, name] :
+       {std::tuple{"fps", fps, "video.fps"},
+        std::tuple{"jpeg_quality", static_cast<double>(quality), "video.quality"},
+        std::tuple{"scale", scale, "video.scale"}}) {
+    std::string reason = kapfix::v1::CheckSetting(video, field, value, name);
+    if (!reason.empty()) {
+      if (error) *error = std::move(reason);
+      return false;
+    }
   }
   return true;
 }

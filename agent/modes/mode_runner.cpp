@@ -365,9 +365,7 @@ FrameOutcome ModeRunner::Calibrate(const cv::Mat& plane) {
     std::string error;
     if (fitted.IsValid(&error)) {
       for (LensProfile& profile : settings_.lenses) {
-        if (profile.name != lens) continue;
-        profile.deg_per_px_pan = fitted.pan_deg_per_px;
-        profile.deg_per_px_tilt = fitted.tilt_deg_per_px;
+        if (profile.name == lens) profile.ApplyCalibration(fitted);
       }
       loop_->SetCalibration(fitted);
       applied = fitted;

@@ -11,7 +11,7 @@
 namespace kapfix::station {
 
 SettingRow::SettingRow(const Spec& spec, const QString& help, QWidget* parent)
-    : QWidget(parent), key_(QLatin1String(spec.key)), kind_(spec.kind), status_(new QLabel(this)) {
+    : QWidget(parent), key_(spec.key), kind_(spec.kind), status_(new QLabel(this)) {
   setObjectName(QStringLiteral("setting_") + key_);
   auto emit_edit = [this] { emit edited(key_, value()); };
   switch (spec.kind) {

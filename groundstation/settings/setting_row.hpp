@@ -19,10 +19,10 @@ class SettingRow final : public QWidget {
   enum class Kind { kReal, kInteger, kChoice, kSwitch, kText };
 
   struct Spec {
-    const char* key;    // setting key, e.g. "p"
-    const char* label;  // what the operator reads, with its unit
+    QString key;    // setting key, e.g. "p"
+    QString label;  // what the operator reads, with its unit
     Kind kind = Kind::kReal;
-    double minimum = 0;  // kReal / kInteger: editor range (the agent checks the real one)
+    double minimum = 0;  // kReal / kInteger: editor range, the schema's (the agent checks too)
     double maximum = 1;
     int decimals = 2;     // kReal
     double step = 0.1;    // kReal / kInteger

@@ -3,7 +3,6 @@
 #include <google/protobuf/descriptor.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "common/search/search_strategy_names.hpp"
+#include "kapfix/v1/settings_schema.hpp"
 #include "tests/fuzz/invariant.hpp"
 
 namespace kapfix::fuzz {
@@ -20,52 +20,24 @@ using google::protobuf::FieldDescriptor;
 using google::protobuf::Message;
 using kapfix::agent::CommandLimits;
 
-struct Range {
-  std::string_view field;  // full name, e.g. "kapfix.v1.Gains.p"
-  double lo;
-  double hi;
-  bool open_below;  // (lo, hi] rather than [lo, hi]
-};
-
-// Every float a command can carry and the range the agent accepts for it. A float field
-// missing here breaks the check: a new one needs its limit, here and in CommandValidator.
-std::array<Range, 15> FloatRanges(const CommandLimits& l) {
-  return {{
-      {"kapfix.v1.Gains.p", 0, l.max_p, false},
-      {"kapfix.v1.Gains.i", 0, l.max_i, false},
-      {"kapfix.v1.Gains.d", 0, l.max_d, false},
-      {"kapfix.v1.Gains.dead_band_px", 0, l.max_dead_band_px, false},
-      {"kapfix.v1.Gains.rate_limit_deg_per_s", 0, l.max_rate_limit_deg_per_s, true},
-      {"kapfix.v1.SearchSettings.random_fraction", 0, 1, true},
-      {"kapfix.v1.SearchSettings.dc_hysteresis_px", 0, l.max_dc_hysteresis_px, false},
-      {"kapfix.v1.CameraSettings.gain_db", l.min_gain_db, l.max_gain_db, false},
-      {"kapfix.v1.CameraSettings.exposure_us", 0, l.max_exposure_us, true},
-      {"kapfix.v1.LensProfile.focal_length_mm", 0, l.max_focal_length_mm, true},
-      {"kapfix.v1.LensProfile.pixel_pitch_um", 0, l.max_pixel_pitch_um, true},
-      {"kapfix.v1.SetMode.deadline_s", 0, l.max_deadline_s, true},
-      {"kapfix.v1.VideoSettings.fps", 0, l.max_video_fps, false},
-      {"kapfix.v1.VideoSettings.scale", 0, 1, true},
-      // 0 (off) or at least min_photo_interval_s: the lower part is checked on its own.
-      {"kapfix.v1.Command.set_photo_interval_s", 0, l.max_photo_interval_s, false},
-  }};
-}
-
-void RequireFloatInRange(const FieldDescriptor& field, double value,
-                         const std::array<Range, 15>& ranges) {
-  const auto range = std::find_if(ranges.begin(), ranges.end(),
-                                  [&](const Range& r) { return r.field == field.full_name(); });
-  if (range == ranges.end()) {
-    Broken(field.full_name() + " reached the agent but the check knows no limit for it");
+// The range the agent accepts for a number is its field's option in the settings schema: a
+// number that reached the agent must be in it. A numeric command field without one breaks
+// the check: a new one needs its range in the .proto.
+void RequireNumberInRange(const FieldDescriptor& field, double value) {
+  const kapfix::v1::SettingOptions* setting = kapfix::v1::SettingOf(field);
+  if (setting == nullptr) {
+    Broken(field.full_name() + " reached the agent but the schema gives it no range");
   }
-  const bool above = range->open_below ? value > range->lo : value >= range->lo;
-  if (!std::isfinite(value) || !above || value > range->hi) {
-    Broken(field.full_name() + " = " + std::to_string(value) + " reached the agent out of range");
+  if (!kapfix::v1::InRange(value, *setting)) {
+    Broken(kapfix::v1::OutOfRangeReason(field.full_name(), value, *setting) +
+           ", yet it reached the agent");
   }
 }
 
-// Walks every field present: floats finite and in range, enums known; integers and strings
-// are checked by name in RequireSizesFit.
-void RequireFieldsKnownAndFinite(const Message& message, const std::array<Range, 15>& ranges) {
+// Walks every field present: floats and the settings' whole numbers finite and in their
+// schema range, enums known; other integers and strings are checked by name in
+// RequireSizesFit.
+void RequireFieldsKnownAndFinite(const Message& message) {
   const auto& reflection = *message.GetReflection();
   std::vector<const FieldDescriptor*> fields;
   reflection.ListFields(message, &fields);
@@ -76,10 +48,15 @@ void RequireFieldsKnownAndFinite(const Message& message, const std::array<Range,
     }
     switch (field->cpp_type()) {
       case FieldDescriptor::CPPTYPE_FLOAT:
-        RequireFloatInRange(*field, reflection.GetFloat(message, field), ranges);
+        RequireNumberInRange(*field, reflection.GetFloat(message, field));
         break;
       case FieldDescriptor::CPPTYPE_DOUBLE:
-        RequireFloatInRange(*field, reflection.GetDouble(message, field), ranges);
+        RequireNumberInRange(*field, reflection.GetDouble(message, field));
+        break;
+      case FieldDescriptor::CPPTYPE_UINT32:
+        if (kapfix::v1::SettingOf(*field) != nullptr) {
+          RequireNumberInRange(*field, reflection.GetUInt32(message, field));
+        }
         break;
       case FieldDescriptor::CPPTYPE_ENUM: {
         // proto3 enums are open: any integer parses, only known values may pass.
@@ -91,7 +68,7 @@ void RequireFieldsKnownAndFinite(const Message& message, const std::array<Range,
         break;
       }
       case FieldDescriptor::CPPTYPE_MESSAGE:
-        RequireFieldsKnownAndFinite(reflection.GetMessage(message, field), ranges);
+        RequireFieldsKnownAndFinite(reflection.GetMessage(message, field));
         break;
       default:
         break;
@@ -112,10 +89,6 @@ void RequireSizesFit(const kapfix::v1::Command& command, const kapfix::v1::Agent
   if (command.has_set_mode()) {
     const auto& set_mode = command.set_mode();
     Require(set_mode.mode() != kapfix::v1::MODE_UNSPECIFIED, "set_mode names a mode");
-    if (set_mode.has_deadline_frames()) {
-      RequireBetween(set_mode.deadline_frames(), 1, l.max_deadline_frames,
-                     "set_mode.deadline_frames within limits");
-    }
   }
   if (command.has_set_search()) {
     const auto& search = command.set_search();
@@ -125,12 +98,11 @@ void RequireSizesFit(const kapfix::v1::Command& command, const kapfix::v1::Agent
               "set_search.strategy is a known strategy");
     }
     if (search.has_patch_size_px()) {
-      RequireBetween(search.patch_size_px(), l.min_patch_size_px, std::min(width, height),
+      RequireBetween(search.patch_size_px(), 1, std::min(width, height),
                      "set_search.patch_size_px fits the frame");
     }
     if (search.has_slice_count()) {
-      RequireBetween(search.slice_count(), 1, std::min(l.max_slice_count, height),
-                     "set_search.slice_count within limits and frame height");
+      RequireBetween(search.slice_count(), 1, height, "set_search.slice_count within the frame");
     }
     if (search.has_search_range_px()) {
       RequireBetween(search.search_range_px(), 1, std::max(width, height),
@@ -149,18 +121,9 @@ void RequireSizesFit(const kapfix::v1::Command& command, const kapfix::v1::Agent
                 (name.empty() || name.front() != '.'),
             "set_lens.name is a plain, visible file name");
   }
-  if (command.has_set_video() && command.set_video().has_jpeg_quality()) {
-    RequireBetween(command.set_video().jpeg_quality(), 1, 100,
-                   "set_video.jpeg_quality in [1, 100]");
-  }
   if (command.has_take_photo()) {
     Require(command.take_photo().note().size() <= l.max_photo_note_bytes,
             "take_photo.note within its length limit");
-  }
-  if (command.has_set_photo_interval_s()) {
-    const float interval = command.set_photo_interval_s();
-    Require(interval == 0.0F || interval >= l.min_photo_interval_s,
-            "set_photo_interval_s is 0 (off) or at least the shortest interval");
   }
   if (command.has_request_state()) {
     Require(command.request_state().resend_photos_since_us() >= 0,
@@ -174,7 +137,7 @@ void RequireWithinLimits(const kapfix::v1::Command& command, const kapfix::v1::A
                          const CommandLimits& limits) {
   Require(command.command_case() != kapfix::v1::Command::COMMAND_NOT_SET,
           "an executed command carries a command");
-  RequireFieldsKnownAndFinite(command, FloatRanges(limits));
+  RequireFieldsKnownAndFinite(command);
   RequireSizesFit(command, before, limits);
 }
 

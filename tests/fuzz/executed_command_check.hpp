@@ -2,8 +2,8 @@
 
 // What the agent promises about every command that reaches AgentControl::Execute (SPEC §2.8,
 // §5; issue 5), stated apart from CommandValidator so that the fuzzer checks the validator
-// instead of repeating it: every number is finite and within CommandLimits, every enum is a
-// value this build knows, every size and index fits the agent's state.
+// instead of repeating it: every number is finite and within its settings-schema range, every enum
+// is a value this build knows, every size and index fits the agent's state.
 
 #include "agent/server/command_validator.hpp"
 #include "kapfix/v1/command.pb.h"

@@ -51,13 +51,13 @@ TEST(CommandValidatorGainsTest, AcceptsAPartialUpdateInRange) {
 }
 
 TEST(CommandValidatorGainsTest, RefusesNaNNamingTheFieldAndTheLimit) {
-  ExpectOutOfRange(Gains(kNaN), "set_gains.p = nan", "finite", "[0, 10]");
+  ExpectOutOfRange(Gains(kNaN), "set_gains.p = nan", "finite", "[0.01, 10]");
 }
 
 TEST(CommandValidatorGainsTest, RefusesInfinity) {
   Command command;
   command.mutable_set_gains()->set_i(kInf);
-  ExpectOutOfRange(command, "set_gains.i = inf", "[0, 100]");
+  ExpectOutOfRange(command, "set_gains.i = inf", "[0, 10] 1/s");
 }
 
 TEST(CommandValidatorGainsTest, RefusesANegativeGain) {
@@ -73,7 +73,25 @@ TEST(CommandValidatorGainsTest, RefusesAGainAboveItsLimit) {
 TEST(CommandValidatorGainsTest, RefusesAZeroRateLimit) {
   Command command;
   command.mutable_set_gains()->set_rate_limit_deg_per_s(0);
-  ExpectOutOfRange(command, "set_gains.rate_limit_deg_per_s = 0", "(0, 1000]");
+  ExpectOutOfRange(command, "set_gains.rate_limit_deg_per_s = 0", "[1, 1000] deg/s");
+}
+
+// Issue 15: a tiny positive rate froze the servos while passing a "> 0" check.
+TEST(CommandValidatorGainsTest, RefusesATinyRateLimit) {
+  Command command;
+  command.mutable_set_gains()->set_rate_limit_deg_per_s(1e-45F);
+  ExpectOutOfRange(command, "set_gains.rate_limit_deg_per_s = 1e-45", "[1, 1000] deg/s");
+}
+
+// The config check refuses kp = 0 and ki > 10: the command check must refuse the same.
+TEST(CommandValidatorGainsTest, RefusesAZeroProportionalGain) {
+  ExpectOutOfRange(Gains(0), "set_gains.p = 0", "[0.01, 10]");
+}
+
+TEST(CommandValidatorGainsTest, RefusesAnIntegralGainAboveTheConfigsLimit) {
+  Command command;
+  command.mutable_set_gains()->set_i(11);
+  ExpectOutOfRange(command, "set_gains.i = 11", "[0, 10] 1/s");
 }
 
 TEST(CommandValidatorGainsTest, RefusesAnUnknownControllerValue) {
@@ -122,7 +140,13 @@ TEST(CommandValidatorSearchTest, RefusesZeroSlices) {
 TEST(CommandValidatorSearchTest, RefusesARandomFractionOfZero) {
   Command command;
   command.mutable_set_search()->set_random_fraction(0);
-  ExpectOutOfRange(command, "set_search.random_fraction = 0", "(0, 1]");
+  ExpectOutOfRange(command, "set_search.random_fraction = 0", "[0.01, 1]");
+}
+
+TEST(CommandValidatorSearchTest, RefusesATinyRandomFraction) {
+  Command command;
+  command.mutable_set_search()->set_random_fraction(1e-45F);
+  ExpectOutOfRange(command, "set_search.random_fraction = 1e-45", "[0.01, 1]");
 }
 
 TEST(CommandValidatorSearchTest, RefusesAnUnknownAxis) {
@@ -170,13 +194,13 @@ TEST(CommandValidatorSliceTest, RefusesASliceBeyondTheAgentsSliceCount) {
 TEST(CommandValidatorCameraTest, RefusesANegativeExposure) {
   Command command;
   command.mutable_set_camera()->set_exposure_us(-100);
-  ExpectOutOfRange(command, "set_camera.exposure_us = -100", "(0, 1e+07]");
+  ExpectOutOfRange(command, "set_camera.exposure_us = -100", "[10, 1e+07] µs");
 }
 
 TEST(CommandValidatorCameraTest, RefusesANaNGain) {
   Command command;
   command.mutable_set_camera()->set_gain_db(kNaN);
-  ExpectOutOfRange(command, "set_camera.gain_db = nan", "[0, 48]");
+  ExpectOutOfRange(command, "set_camera.gain_db = nan", "[0, 48] dB");
 }
 
 TEST(CommandValidatorCameraTest, AcceptsAutoExposureAlone) {
@@ -245,13 +269,13 @@ TEST(CommandValidatorVideoTest, AcceptsFpsZeroAsVideoOff) {
 TEST(CommandValidatorVideoTest, RefusesNegativeFps) {
   Command command;
   command.mutable_set_video()->set_fps(-1);
-  ExpectOutOfRange(command, "set_video.fps = -1", "[0, 60]");
+  ExpectOutOfRange(command, "set_video.fps = -1", "0 (off) or [0.1, 60] fps");
 }
 
 TEST(CommandValidatorVideoTest, RefusesJpegQualityZero) {
   Command command;
   command.mutable_set_video()->set_jpeg_quality(0);
-  ExpectOutOfRange(command, "set_video.jpeg_quality = 0", "[1, 100]");
+  ExpectOutOfRange(command, "set_video.jpeg_quality = 0", "[10, 100]");
 }
 
 TEST(CommandValidatorVideoTest, RefusesJpegQualityAbove100) {
@@ -263,7 +287,13 @@ TEST(CommandValidatorVideoTest, RefusesJpegQualityAbove100) {
 TEST(CommandValidatorVideoTest, RefusesAScaleAboveOne) {
   Command command;
   command.mutable_set_video()->set_scale(1.5F);
-  ExpectOutOfRange(command, "set_video.scale = 1.5", "(0, 1]");
+  ExpectOutOfRange(command, "set_video.scale = 1.5", "[0.05, 1]");
+}
+
+TEST(CommandValidatorVideoTest, RefusesATinyScale) {
+  Command command;
+  command.mutable_set_video()->set_scale(0.001F);
+  ExpectOutOfRange(command, "set_video.scale = 0.001", "[0.05, 1]");
 }
 
 TEST(CommandValidatorModeTest, AcceptsSspWithADeadline) {

@@ -5,6 +5,8 @@
 #include <cctype>
 #include <sstream>
 
+#include "kapfix/v1/settings_schema.hpp"
+
 namespace kapfix::ctl {
 namespace {
 
@@ -19,6 +21,45 @@ std::string EnumWord(const google::protobuf::EnumDescriptor& type, int value,
   return word;
 }
 
+// "gains: controller=predictive p=0.8 …": every field of one settings message; enums by
+// their word, switches as 1 or 0.
+std::string SettingsLine(const char* name, const google::protobuf::Message& settings) {
+  using google::protobuf::FieldDescriptor;
+  std::ostringstream out;
+  out << name << ":";
+  const auto& type = *settings.GetDescriptor();
+  const auto& r = *settings.GetReflection();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const FieldDescriptor& field = *type.field(i);
+    out << " " << field.name() << "=";
+    switch (field.cpp_type()) {
+      case FieldDescriptor::CPPTYPE_FLOAT:
+        out << r.GetFloat(settings, &field);
+        break;
+      case FieldDescriptor::CPPTYPE_UINT32:
+        out << r.GetUInt32(settings, &field);
+        break;
+      case FieldDescriptor::CPPTYPE_BOOL:
+        out << (r.GetBool(settings, &field) ? 1 : 0);
+        break;
+      case FieldDescriptor::CPPTYPE_STRING:
+        out << r.GetString(settings, &field);
+        break;
+      case FieldDescriptor::CPPTYPE_ENUM: {
+        const auto* value = r.GetEnum(settings, &field);
+        const std::string word = kapfix::v1::SettingWord(*value);
+        out << (word.empty() ? std::to_string(value->number()) : word);
+        break;
+      }
+      default:
+        out << "?";
+        break;
+    }
+  }
+  out << "\n";
+  return out.str();
+}
+
 }  // namespace
 
 std::string ModeWord(kapfix::v1::Mode mode) {
@@ -27,39 +68,17 @@ std::string ModeWord(kapfix::v1::Mode mode) {
 
 std::string StateText(const kapfix::v1::AgentState& state) {
   std::ostringstream out;
-  const auto& gains = state.gains();
   const auto& search = state.search();
-  const auto& camera = state.camera();
-  const auto& lens = state.lens();
-  const auto& video = state.video();
   out << "agent: id=" << state.header().agent_id() << " version=" << state.agent_version()
       << " simulated=" << (state.simulated() ? 1 : 0) << " frame=" << state.frame_width_px() << "x"
       << state.frame_height_px() << " photos_stored=" << state.photos_stored() << "\n";
   out << "mode: " << ModeWord(state.mode()) << "\n";
   out << "slice: " << state.slice() << " of " << search.slice_count() << "\n";
-  out << "gains: controller="
-      << EnumWord(*kapfix::v1::ControllerKind_descriptor(), gains.controller(), "CONTROLLER_KIND_")
-      << " p=" << gains.p() << " i=" << gains.i() << " d=" << gains.d()
-      << " dead_band_px=" << gains.dead_band_px()
-      << " rate_limit_deg_per_s=" << gains.rate_limit_deg_per_s() << "\n";
-  out << "search: strategy=" << search.strategy() << " sampling="
-      << EnumWord(*kapfix::v1::Sampling_descriptor(), search.sampling(), "SAMPLING_")
-      << " random_fraction=" << search.random_fraction()
-      << " patch_size_px=" << search.patch_size_px() << " slice_count=" << search.slice_count()
-      << " axis=" << EnumWord(*kapfix::v1::Axis_descriptor(), search.axis(), "AXIS_")
-      << " search_range_px=" << search.search_range_px()
-      << " subpixel=" << (search.subpixel() ? 1 : 0)
-      << " channel=" << EnumWord(*kapfix::v1::Channel_descriptor(), search.channel(), "CHANNEL_")
-      << " slice_score="
-      << EnumWord(*kapfix::v1::SliceScoreKind_descriptor(), search.slice_score(),
-                  "SLICE_SCORE_KIND_")
-      << " dc_hysteresis_px=" << search.dc_hysteresis_px() << "\n";
-  out << "camera: gain_db=" << camera.gain_db() << " exposure_us=" << camera.exposure_us()
-      << " auto_exposure=" << (camera.auto_exposure() ? 1 : 0) << "\n";
-  out << "lens: name=" << lens.name() << " focal_length_mm=" << lens.focal_length_mm()
-      << " pixel_pitch_um=" << lens.pixel_pitch_um() << "\n";
-  out << "video: fps=" << video.fps() << " jpeg_quality=" << video.jpeg_quality()
-      << " scale=" << video.scale() << "\n";
+  // The settings, one line per settings message, every field as the schema names it.
+  for (const char* name : {"gains", "search", "camera", "lens", "video"}) {
+    const auto* field = state.GetDescriptor()->FindFieldByName(name);
+    out << SettingsLine(name, state.GetReflection()->GetMessage(state, field));
+  }
   out << "photo_interval_s: " << state.photo_interval_s() << "\n";
   if (state.has_last_slice_report()) {
     out << "last_ssp: recommended_slice=" << state.last_slice_report().recommended_slice()

@@ -1,9 +1,11 @@
 #pragma once
 
 // The KEYs of `kapfix-ctl set KEY VALUE`: each names one field of a settings command and
-// parses its value. Parsing checks syntax only (a number, a known keyword); ranges are the
-// agent's to check (CommandValidator), so that the agent's reason reaches the operator and
-// the rules live in one place. "nan" and "inf" therefore parse, and the agent refuses them.
+// parses its value. Keys, help texts and ranges are the settings schema's
+// (kapfix/v1/settings_schema.hpp): a field with a `setting` option that has a key is a key
+// here, with nothing to add. Parsing checks syntax only (a number, a known keyword); ranges
+// are the agent's to check, so that the agent's reason reaches the operator. "nan" and "inf"
+// therefore parse, and the agent refuses them.
 
 #include <optional>
 #include <string>
@@ -11,14 +13,15 @@
 #include <vector>
 
 #include "kapfix/v1/command.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::ctl {
 
 struct SettingKey {
-  std::string_view name;  // e.g. "p", "video_fps"
-  std::string_view help;  // value syntax and unit, e.g. "[1] proportional gain"
-  // Writes `value` into `command`; false when the text is not a value of this key's type.
-  bool (*apply)(kapfix::v1::Command& command, std::string_view value);
+  std::string name;  // e.g. "p", "video_fps"
+  // Value syntax, what it does and its range, e.g. "proportional gain: … [0.01, 10]".
+  std::string help;
+  kapfix::v1::SettingEntry entry;  // where the value goes in a Command
 };
 
 // Every key, in the order `kapfix-ctl set --help` lists them.

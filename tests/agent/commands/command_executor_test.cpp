@@ -43,7 +43,7 @@ TEST(CommandExecutorTest, SetGainsUpdatesTheSettings) {
   Rig rig(temp.path());
   const kapfix::v1::Reply reply = rig.executor.Execute(Gains(0.4F));
   EXPECT_TRUE(reply.ok()) << reply.reason();
-  EXPECT_FLOAT_EQ(static_cast<float>(rig.state.settings().controller.kp), 0.4F);
+  EXPECT_FLOAT_EQ(static_cast<float>(rig.state.settings()->controller.kp), 0.4F);
 }
 
 TEST(CommandExecutorTest, SetGainsPublishesTheNewState) {
@@ -62,7 +62,7 @@ TEST(CommandExecutorTest, OutOfRangeGainIsRefusedAndChangesNothing) {
   EXPECT_FALSE(reply.ok());
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
   EXPECT_NE(reply.reason().find("controller.kp"), std::string::npos) << reply.reason();
-  EXPECT_DOUBLE_EQ(rig.state.settings().controller.kp, ControllerConfig{}.kp);
+  EXPECT_DOUBLE_EQ(rig.state.settings()->controller.kp, ControllerConfig{}.kp);
 }
 
 TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
@@ -71,7 +71,7 @@ TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
   kapfix::v1::Command command;
   command.set_set_photo_interval_s(5);
   EXPECT_TRUE(rig.executor.Execute(command).ok());
-  EXPECT_DOUBLE_EQ(rig.state.settings().photos.interval_s, 5);
+  EXPECT_DOUBLE_EQ(rig.state.settings()->photos.interval_s, 5);
 }
 
 TEST(CommandExecutorTest, TakePhotoIsAcceptedWhenTheFolderIsWritable) {

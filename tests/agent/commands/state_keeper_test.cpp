@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
 #include "tests/agent/support/recording_stream_sink.hpp"
 
 namespace kapfix::agent {
@@ -93,10 +97,117 @@ TEST(StateKeeperTest, SetSettingsPublishesTheNewState) {
   AgentConfig settings;
   settings.controller.kp = 0.3;
   keeper.SetSettings(settings);
-  EXPECT_DOUBLE_EQ(keeper.settings().controller.kp, 0.3);
+  EXPECT_DOUBLE_EQ(keeper.settings()->controller.kp, 0.3);
   const auto states = sink.Messages<kapfix::v1::AgentState>();
   ASSERT_EQ(states.size(), 1u);
   EXPECT_FLOAT_EQ(states[0].gains().p(), 0.3F);
+}
+
+// Holds the first caller of Count() (a thread in the middle of publishing a state, between
+// its snapshot and the sink) until Release(); later callers pass.
+class HeldPhotoCount {
+ public:
+  std::uint64_t Count() {
+    std::unique_lock lock(mutex_);
+    if (calls_++ == 0) {
+      entered_ = true;
+      changed_.notify_all();
+      changed_.wait(lock, [this] { return released_; });
+    }
+    return 0;
+  }
+  void WaitUntilHeld() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return entered_; });
+  }
+  void Release() {
+    std::lock_guard lock(mutex_);
+    released_ = true;
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int calls_ = 0;
+  bool entered_ = false;
+  bool released_ = false;
+};
+
+// The race of StationWithAgent.ChangesAGain: the control thread publishes a mode change and is
+// held after taking its snapshot; meanwhile a command changes a gain. The last state sent
+// must be the newest, and versions must never go down.
+TEST(StateKeeperTest, ANewerStateIsNeverFollowedByAnOlderOne) {
+  RecordingStreamSink sink;
+  HeldPhotoCount photos;
+  StateKeeper keeper(AgentConfig{}, sink, true, [&photos] { return photos.Count(); });
+  std::thread control([&keeper] { keeper.OnModeChanged(AgentMode::kFixate, 0); });
+  photos.WaitUntilHeld();
+  AgentConfig settings;
+  settings.controller.kp = 0.75;
+  keeper.SetSettings(settings);  // must not wait for the held thread
+  photos.Release();
+  control.join();
+
+  const auto states = sink.Messages<kapfix::v1::AgentState>();
+  ASSERT_FALSE(states.empty());
+  EXPECT_FLOAT_EQ(states.back().gains().p(), 0.75F);
+  EXPECT_EQ(states.back().mode(), kapfix::v1::MODE_FIXATE);
+  EXPECT_EQ(states.back().version(), keeper.State().version());
+  for (std::size_t i = 1; i < states.size(); ++i) {
+    EXPECT_GT(states[i].version(), states[i - 1].version()) << "state " << i;
+  }
+}
+
+TEST(StateKeeperTest, EveryChangeRaisesTheVersion) {
+  RecordingStreamSink sink;
+  StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
+  const std::uint64_t before = keeper.State().version();
+  keeper.OnModeChanged(AgentMode::kSsp, 0);
+  const std::uint64_t after_mode = keeper.State().version();
+  keeper.SetSettings(AgentConfig{});
+  EXPECT_GT(after_mode, before);
+  EXPECT_GT(keeper.State().version(), after_mode);
+}
+
+TEST(StateKeeperTest, PublishingAgainWithoutAChangeKeepsTheVersion) {
+  RecordingStreamSink sink;
+  StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
+  keeper.PublishState();
+  keeper.PublishState();
+  const auto states = sink.Messages<kapfix::v1::AgentState>();
+  ASSERT_EQ(states.size(), 2u);
+  EXPECT_EQ(states[0].version(), states[1].version());
+}
+
+TEST(StateKeeperTest, ARefusedUpdateChangesAndPublishesNothing) {
+  RecordingStreamSink sink;
+  StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
+  const auto before = keeper.settings();
+  std::string error;
+  const auto updated = keeper.UpdateSettings(
+      [](AgentConfig* config, std::string* why) {
+        config->controller.kp = 99;
+        *why = "kp too large";
+        return false;
+      },
+      &error);
+  EXPECT_EQ(updated, nullptr);
+  EXPECT_EQ(error, "kp too large");
+  EXPECT_EQ(keeper.settings(), before);
+  EXPECT_EQ(sink.size(), 0u);
+}
+
+TEST(StateKeeperTest, ASnapshotStaysAsItWasAfterAChange) {
+  RecordingStreamSink sink;
+  StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
+  const auto snapshot = keeper.settings();
+  const double kp = snapshot->controller.kp;
+  AgentConfig changed;
+  changed.controller.kp = kp / 2;
+  keeper.SetSettings(changed);
+  EXPECT_DOUBLE_EQ(snapshot->controller.kp, kp);
+  EXPECT_DOUBLE_EQ(keeper.settings()->controller.kp, kp / 2);
 }
 
 TEST(StateKeeperTest, StateCountsTheStoredPhotosAndSaysSimulated) {
@@ -115,8 +226,8 @@ TEST(StateKeeperTest, FinishedCalibrationIsStoredInTheLensProfile) {
   report.set_lens_profile("default");
   report.set_finished(true);
   keeper.OnCalibrationReport(report, LensCalibration{0.05, 0.07});
-  EXPECT_DOUBLE_EQ(keeper.settings().active_lens().DegPerPxPan(), 0.05);
-  EXPECT_DOUBLE_EQ(keeper.settings().active_lens().DegPerPxTilt(), 0.07);
+  EXPECT_DOUBLE_EQ(keeper.settings()->active_lens().DegPerPxPan(), 0.05);
+  EXPECT_DOUBLE_EQ(keeper.settings()->active_lens().DegPerPxTilt(), 0.07);
   EXPECT_TRUE(keeper.State().has_calibration());
 }
 
@@ -133,8 +244,8 @@ TEST(StateKeeperTest, CalibratingALensGivenByItsOpticsKeepsTheSettingsValid) {
   report.set_finished(true);
   keeper.OnCalibrationReport(report, LensCalibration{0.15, 0.16});
   std::string error;
-  EXPECT_TRUE(keeper.settings().IsValid(&error)) << error;
-  EXPECT_DOUBLE_EQ(keeper.settings().active_lens().DegPerPxPan(), 0.15);
+  EXPECT_TRUE(keeper.settings()->IsValid(&error)) << error;
+  EXPECT_DOUBLE_EQ(keeper.settings()->active_lens().DegPerPxPan(), 0.15);
 }
 
 TEST(StateKeeperTest, UnusableCalibrationLeavesTheLensAsItWas) {
@@ -144,7 +255,7 @@ TEST(StateKeeperTest, UnusableCalibrationLeavesTheLensAsItWas) {
   report.set_lens_profile("default");
   report.set_finished(true);
   keeper.OnCalibrationReport(report, std::nullopt);
-  EXPECT_DOUBLE_EQ(keeper.settings().active_lens().DegPerPxPan(), 0.1);
+  EXPECT_DOUBLE_EQ(keeper.settings()->active_lens().DegPerPxPan(), 0.1);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "agent/server/command_validator.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -94,6 +96,29 @@ TEST_F(AgentConfigFileTest, BadJsonNamesTheFileAndTheLine) {
 TEST_F(AgentConfigFileTest, OutOfRangeValueNamesTheField) {
   const std::string error = LoadError(R"({"camera": {"fps": 0}})");
   EXPECT_EQ(error, dir_ + "/agent.json: camera.fps: must be in (0, 1000], got 0.000000");
+}
+
+// Issue 11: the config loader and the command server name the range in the same words (both
+// from the settings schema), and issue 15's tiny rate limit is refused by both.
+TEST_F(AgentConfigFileTest, AnOutOfRangeSettingGetsTheCommandServersReason) {
+  const std::string error = LoadError(R"({"controller": {"max_rate_deg_per_s": 1e-45}})");
+  EXPECT_EQ(
+      error,
+      dir_ + "/agent.json: controller.max_rate_deg_per_s = 1e-45: must be in [1, 1000] deg/s");
+  kapfix::v1::Command command;
+  command.mutable_set_gains()->set_rate_limit_deg_per_s(1e-45F);
+  const auto reply = CommandValidator().Validate(command, kapfix::v1::AgentState());
+  EXPECT_EQ(reply.reason(), "set_gains.rate_limit_deg_per_s = 1e-45: must be in [1, 1000] deg/s");
+}
+
+// The integral gain had two ranges ([0, 100] for commands, 0…10 in the config).
+TEST_F(AgentConfigFileTest, TheIntegralGainHasTheCommandsRange) {
+  EXPECT_EQ(LoadError(R"({"controller": {"ki": 11}})"),
+            dir_ + "/agent.json: controller.ki = 11: must be in [0, 10] 1/s");
+  kapfix::v1::Command command;
+  command.mutable_set_gains()->set_i(11);
+  EXPECT_EQ(CommandValidator().Validate(command, kapfix::v1::AgentState()).reason(),
+            "set_gains.i = 11: must be in [0, 10] 1/s");
 }
 
 TEST_F(AgentConfigFileTest, UnknownKeyIsAnError) {

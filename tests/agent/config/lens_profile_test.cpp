@@ -46,5 +46,23 @@ TEST(LensProfileTest, UnnamedProfileIsInvalid) {
   EXPECT_FALSE(lens.IsValid(nullptr));
 }
 
+TEST(LensProfileTest, ACalibrationAppliedToAnOpticalProfileLeavesAValidProfile) {
+  // resources/kite.json defines its lens by its optics; a calibration must replace them.
+  LensProfile lens{.name = "3.5mm", .focal_mm = 3.5, .pixel_pitch_um = 5};
+  lens.ApplyCalibration(LensCalibration{.pan_deg_per_px = 0.07, .tilt_deg_per_px = 0.09});
+  std::string error;
+  EXPECT_TRUE(lens.IsValid(&error)) << error;
+  EXPECT_EQ(lens.DegPerPxPan(), 0.07);
+  EXPECT_EQ(lens.DegPerPxTilt(), 0.09);
+}
+
+TEST(LensProfileTest, ACalibrationOfAReversedServoIsAValidProfile) {
+  // LensCalibration::IsValid accepts a negative slope (a servo mounted the other way).
+  LensProfile lens{.name = "6mm", .deg_per_px_pan = 0.1, .deg_per_px_tilt = 0.1};
+  lens.ApplyCalibration(LensCalibration{.pan_deg_per_px = -0.05, .tilt_deg_per_px = 0.05});
+  std::string error;
+  EXPECT_TRUE(lens.IsValid(&error)) << error;
+}
+
 }  // namespace
 }  // namespace kapfix::agent

@@ -29,6 +29,24 @@ TEST(SettingsPanel, ChangingAGainSendsItToTheAgent) {
   EXPECT_EQ(panel.row(QStringLiteral("p"))->statusLabel()->text(), QStringLiteral("✓"));
 }
 
+// The editors take range, unit and help from the settings schema: the gain ranges the agent
+// checks are the ones the operator can dial.
+TEST(SettingsPanel, AnEditorHasTheSchemasRangeUnitAndHelp) {
+  FakeAgentClient client;
+  SettingsPanel panel(client);
+  SettingRow* rate = panel.row(QStringLiteral("rate_limit"));
+  ASSERT_NE(rate, nullptr);
+  auto* box = qobject_cast<QDoubleSpinBox*>(rate->editor());
+  ASSERT_NE(box, nullptr);
+  EXPECT_DOUBLE_EQ(box->minimum(), 1);
+  EXPECT_DOUBLE_EQ(box->maximum(), 1000);
+  EXPECT_TRUE(box->toolTip().contains(QStringLiteral("[1, 1000] deg/s")))
+      << box->toolTip().toStdString();
+  auto* i = qobject_cast<QDoubleSpinBox*>(panel.row(QStringLiteral("i"))->editor());
+  ASSERT_NE(i, nullptr);
+  EXPECT_DOUBLE_EQ(i->maximum(), 10);
+}
+
 TEST(SettingsPanel, RefusedSettingShowsTheAgentsReasonNextToItsControl) {
   FakeAgentClient client;
   client.refuse(kapfix::v1::Command::kSetSearch, "patch_size_px 990 does not fit the frame");
