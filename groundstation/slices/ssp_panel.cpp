@@ -7,6 +7,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "groundstation/keys/lock_confirmation.hpp"
 #include "groundstation/slices/slice_graph_grid.hpp"
 
 namespace kapfix::station {
@@ -87,7 +88,13 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   layout->addWidget(message_);
   layout->addWidget(graphs_, 1);
 
-  connect(run_, &QAction::triggered, this, &SspPanel::runSsp);
+  connect(run_, &QAction::triggered, this, [this] {
+    if (confirmation_ == nullptr) {
+      runSsp();
+    } else {
+      confirmation_->request(tr("start SSP"), [this] { runSsp(); });
+    }
+  });
   connect(confirm_, &QAction::triggered, this, [this] {
     if (recommended_ > 0) pickSlice(recommended_);
   });
@@ -176,6 +183,19 @@ void SspPanel::showReport(const kapfix::v1::SliceReport& report) {
                                 .arg(recommended_)
                           : tr("SSP finished without a recommendation"));
   }
+}
+
+void SspPanel::clearSession() {
+  recommended_ = 0;
+  in_use_ = 0;
+  table_->setRowCount(0);
+  graphs_->showReport(kapfix::v1::SliceReport());
+  confirm_->setEnabled(false);
+  confirm_->setText(tr("Confirm recommended"));
+  use_selected_->setEnabled(false);
+  progress_->setRange(0, 1);
+  progress_->setValue(0);
+  message_->clear();
 }
 
 unsigned SspPanel::sliceOfRow(int row) const {

@@ -14,9 +14,13 @@ SspScreenshot::SspScreenshot(QWidget& window, AgentClient& client, SspPanel& ssp
                              SspScreenshotOptions options, QObject* parent)
     : QObject(parent), window_(window), options_(std::move(options)) {
   connect(&client, &AgentClient::sliceReportReceived, this,
-          [this](const kapfix::v1::SliceReport& report) {
+          [this, &ssp](const kapfix::v1::SliceReport& report) {
             if (!report.finished() || scheduled_) return;
             scheduled_ = true;
+            if (options_.fixate) {
+              // After the report's own state settles, as an operator would confirm.
+              QTimer::singleShot(500, this, [&ssp] { ssp.confirmAction()->trigger(); });
+            }
             QTimer::singleShot(options_.delay_ms, this, &SspScreenshot::take);
           });
   if (options_.run_ssp) {
