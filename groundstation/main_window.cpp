@@ -33,21 +33,27 @@ namespace kapfix::station {
 namespace {
 
 constexpr double kSideShare = 0.30;    // of the window's width, for the tabbed side panels
-constexpr double kGraphsShare = 0.30;  // of the window's height, for the graphs
+constexpr double kGraphsShare = 0.34;  // of the window's height, for the graphs
 constexpr int kSideMaxPx = 540;        // [px] the side panels need no more
 constexpr int kGraphsMaxPx = 400;      // [px]
 
-QDockWidget* Dock(QMainWindow* window, const QString& title, const QString& name,
-                  QWidget* content) {
+enum class Fit { kScroll, kSqueeze };
+
+QDockWidget* Dock(QMainWindow* window, const QString& title, const QString& name, QWidget* content,
+                  Fit fit = Fit::kScroll) {
   auto* dock = new QDockWidget(title, window);
   dock->setObjectName(name);  // restoreState() finds docks by name
-  // Scrolled rather than squeezed: a panel's minimum never pushes the window off a small
-  // screen or takes the video's room.
-  auto* scroll = new QScrollArea(dock);
-  scroll->setWidget(content);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  dock->setWidget(scroll);
+  if (fit == Fit::kScroll) {
+    // Scrolled rather than squeezed: a panel's minimum never pushes the window off a small
+    // screen or takes the video's room.
+    auto* scroll = new QScrollArea(dock);
+    scroll->setWidget(content);
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    dock->setWidget(scroll);
+  } else {
+    dock->setWidget(content);  // it draws in whatever room it gets (the graphs)
+  }
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
                     QDockWidget::DockWidgetClosable);
   return dock;
@@ -86,7 +92,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
       screen != nullptr ? screen->availableGeometry().size() : QSize(kDefaultWidth, kDefaultHeight);
   resize(std::min(kDefaultWidth, room.width()), std::min(kDefaultHeight, room.height()));
 
-  plots_dock_ = Dock(this, tr("Graphs"), QStringLiteral("graphsDock"), plots_);
+  plots_dock_ = Dock(this, tr("Graphs"), QStringLiteral("graphsDock"), plots_, Fit::kSqueeze);
   addDockWidget(Qt::BottomDockWidgetArea, plots_dock_);
   auto* ssp_dock = Dock(this, tr("Slice selection"), QStringLiteral("sspDock"), ssp_);
   auto* settings_dock = Dock(this, tr("Settings"), QStringLiteral("settingsDock"), settings_);

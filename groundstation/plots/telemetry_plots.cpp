@@ -27,25 +27,19 @@ struct CurveStyle {
 const std::array<CurveStyle, TelemetryPlots::kCurveCount> kCurves = {{
     {0, QT_TRANSLATE_NOOP("TelemetryPlots", "x [px]"), QColor(31, 119, 180), Qt::SolidLine},
     {0, QT_TRANSLATE_NOOP("TelemetryPlots", "y [px]"), QColor(214, 39, 40), Qt::SolidLine},
-    {1, QT_TRANSLATE_NOOP("TelemetryPlots", "confidence"), QColor(44, 160, 44), Qt::SolidLine},
-    {2, QT_TRANSLATE_NOOP("TelemetryPlots", "SSD distance"), QColor(148, 103, 189), Qt::SolidLine},
-    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan cmd"), QColor(255, 127, 14), Qt::DashLine},
+    {1, QT_TRANSLATE_NOOP("TelemetryPlots", "confidence [0..1]"), QColor(44, 160, 44),
+     Qt::SolidLine},
+    {2, QT_TRANSLATE_NOOP("TelemetryPlots", "SSD [grey²]"), QColor(148, 103, 189), Qt::SolidLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan cmd [deg]"), QColor(255, 127, 14), Qt::DashLine},
     {3, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt cmd"), QColor(23, 190, 207), Qt::DashLine},
-    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan"), QColor(255, 127, 14), Qt::SolidLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan [deg]"), QColor(255, 127, 14), Qt::SolidLine},
     {3, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt"), QColor(23, 190, 207), Qt::SolidLine},
 }};
 
-struct RectStyle {
-  const char* title;  // left axis label, with the unit
-  double stretch;     // share of the height
-};
-
-const std::array<RectStyle, kRects> kRectStyles = {{
-    {QT_TRANSLATE_NOOP("TelemetryPlots", "residual [px]"), 1.4},
-    {QT_TRANSLATE_NOOP("TelemetryPlots", "conf. [0..1]"), 0.6},
-    {QT_TRANSLATE_NOOP("TelemetryPlots", "SSD"), 0.6},
-    {QT_TRANSLATE_NOOP("TelemetryPlots", "servo [deg]"), 1.0},
-}};
+// Share of the height of each plot; the legends beside them name the curves with their units
+// (axis titles would not fit the small plots of a laptop screen).
+const std::array<double, kRects> kRectStretch = {1.8, 0.7, 0.7, 0.9};
+const std::array<int, kRects> kRectTicks = {2, 2, 2, 2};
 
 double Value(const TelemetrySample& sample, int curve) {
   switch (static_cast<TelemetryPlots::Curve>(curve)) {
@@ -117,13 +111,16 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   std::array<QCPLegend*, kRects> legends{};
   QFont small = font();
   small.setPointSizeF(small.pointSizeF() * 0.85);
+  plot_->plotLayout()->setRowSpacing(0);
   for (int i = 0; i < kRects; ++i) {
     const auto at = static_cast<std::size_t>(i);
     auto* rect = new QCPAxisRect(plot_);
     plot_->plotLayout()->addElement(i, 0, rect);
     rect->setMarginGroup(QCP::msLeft | QCP::msRight, margins);
-    rect->axis(QCPAxis::atLeft)->setLabel(tr(kRectStyles[at].title));
-    rect->axis(QCPAxis::atLeft)->ticker()->setTickCount(i == 1 || i == 2 ? 2 : 4);
+    rect->axis(QCPAxis::atLeft)->ticker()->setTickCount(kRectTicks[at]);
+    rect->axis(QCPAxis::atLeft)->setTickLabelFont(small);
+    rect->axis(QCPAxis::atBottom)->setTickLabelFont(small);
+    rect->setMinimumMargins(QMargins(0, 2, 0, 2));
     rect->axis(QCPAxis::atBottom)->setLabel(i == kRects - 1 ? tr("capture time [s]") : QString());
     rect->axis(QCPAxis::atBottom)->setTickLabels(i == kRects - 1);
     rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
@@ -134,11 +131,14 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     legend->setRowSpacing(0);
     legend->setBorderPen(Qt::NoPen);
     legend->setMargins(QMargins(4, 0, 4, 0));
+    legend->setFillOrder(QCPLayoutGrid::foRowsFirst);  // two rows, then a new column
+    legend->setWrap(2);
+    legend->setIconSize(16, 8);
     legends[at] = legend;
     rects[at] = rect;
   }
   for (int i = 0; i < kRects; ++i) {
-    plot_->plotLayout()->setRowStretchFactor(i, kRectStyles[static_cast<std::size_t>(i)].stretch);
+    plot_->plotLayout()->setRowStretchFactor(i, kRectStretch[static_cast<std::size_t>(i)]);
   }
   plot_->plotLayout()->setColumnStretchFactor(1, 0.01);  // the legends take what they need
   rects[1]->axis(QCPAxis::atLeft)->setRange(0, 1.05);
@@ -252,7 +252,14 @@ QCPGraph* TelemetryPlots::graph(Curve curve) const {
 }
 
 void TelemetryPlots::addSample(const kapfix::v1::Telemetry& telemetry) {
+  const int session = series_.session();
   series_.append(telemetry);
+  if (series_.session() != session) {
+    // The capture clock went back: the graphs start again rather than draw two clocks.
+    for (QCPGraph* graph : graphs_) graph->data()->clear();
+    drawn_ = series_.appended() - 1;
+    showState();
+  }
   dirty_ = true;
 }
 

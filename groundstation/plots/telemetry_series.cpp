@@ -5,14 +5,15 @@
 
 namespace kapfix::station {
 
-const TelemetrySample* TelemetrySeries::append(const kapfix::v1::Telemetry& telemetry) {
+const TelemetrySample& TelemetrySeries::append(const kapfix::v1::Telemetry& telemetry) {
   const std::int64_t capture_us = telemetry.header().capture_time_us();
+  if (!session_empty_ && capture_us < newest_us_) {
+    ++clock_restarts_;
+    startSession();
+  }
   if (session_empty_) {
     origin_us_ = capture_us;
     session_empty_ = false;
-  } else if (capture_us < newest_us_) {
-    ++out_of_order_;
-    return nullptr;
   }
   newest_us_ = capture_us;
   TelemetrySample sample;
@@ -32,7 +33,7 @@ const TelemetrySample* TelemetrySeries::append(const kapfix::v1::Telemetry& tele
   samples_.push_back(sample);
   ++appended_;
   if (samples_.size() > capacity_) samples_.pop_front();
-  return &samples_.back();
+  return samples_.back();
 }
 
 void TelemetrySeries::startSession() {

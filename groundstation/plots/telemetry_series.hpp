@@ -2,8 +2,9 @@
 
 // The telemetry the graphs show, kept as numbers (bounded) so that the plots can be paused,
 // rebuilt and exported to CSV exactly as measured. Time is the agent's capture time; each
-// agent session (a restart, a replay) has its own origin and number, and within a session
-// time only goes forward: a sample older than the session's newest is not kept (counted).
+// session has its own origin and number, and within a session time only goes forward. A new
+// session starts when the agent restarts (startSession) and when its capture clock goes back
+// (the simulated camera counts from 0 again), so samples of two clocks never interleave.
 
 #include <QString>
 #include <cstddef>
@@ -38,13 +39,13 @@ class TelemetrySeries {
 
   explicit TelemetrySeries(std::size_t capacity = kDefaultCapacity) : capacity_(capacity) {}
 
-  // The sample kept, or nullptr when its capture time goes back within the session.
-  const TelemetrySample* append(const kapfix::v1::Telemetry& telemetry);
+  // Appends one sample; a capture time earlier than the session's newest starts a new session.
+  const TelemetrySample& append(const kapfix::v1::Telemetry& telemetry);
   // The following samples belong to a new session, with their own time origin.
   void startSession();
   int session() const { return session_; }
-  // [count] samples refused because their capture time went back within their session.
-  std::uint64_t outOfOrder() const { return out_of_order_; }
+  // [count] sessions started because the capture time went back.
+  std::uint64_t clockRestarts() const { return clock_restarts_; }
   void clear();
 
   const std::deque<TelemetrySample>& samples() const { return samples_; }
@@ -62,7 +63,7 @@ class TelemetrySeries {
   std::int64_t origin_us_ = 0;  // [µs since epoch] capture time of the session's first sample
   std::int64_t newest_us_ = 0;  // [µs since epoch] capture time of the session's newest sample
   std::uint64_t appended_ = 0;
-  std::uint64_t out_of_order_ = 0;
+  std::uint64_t clock_restarts_ = 0;
 };
 
 }  // namespace kapfix::station

@@ -66,7 +66,8 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // Each column as wide as its header and numbers (never truncated); a narrow dock scrolls.
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
   // Room for the thesis's nine slices and the header, no more: the graphs get the rest.
   table_->setMinimumHeight(11 * (table_->fontMetrics().height() + 6));

@@ -34,7 +34,7 @@ LockIndicator::LockIndicator(const LockMonitor& monitor, Size size, QWidget* par
          "RMS over 5 s. Residual: the displacement the servos have not taken out [px]"));
   QFont big = font();
   big.setBold(true);
-  big.setPointSizeF(big.pointSizeF() * (size == Size::kOnVideo ? 1.8 : 1.2));
+  big.setPointSizeF(big.pointSizeF() * (size == Size::kOnVideo ? 1.6 : 1.2));
   setFont(big);
   setMargin(size == Size::kOnVideo ? 8 : 3);
   connect(&monitor_, &LockMonitor::changed, this, &LockIndicator::showReading);

@@ -85,7 +85,8 @@ void VideoPanel::applySwitches() {
 
 void VideoPanel::setCornerWidget(QWidget* widget) {
   widget->setParent(this);
-  picture_layout_->addWidget(widget, 0, 0, Qt::AlignTop | Qt::AlignLeft);
+  // Top right: the slice numbers are on the left, the crosshair in the middle.
+  picture_layout_->addWidget(widget, 0, 0, Qt::AlignTop | Qt::AlignRight);
   widget->raise();
 }
 

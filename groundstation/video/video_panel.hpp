@@ -25,7 +25,7 @@ class VideoPanel final : public QWidget {
   // The switch of each overlay, by object name ("overlay_slice_grid", ...).
   QCheckBox* overlaySwitch(const QString& name) const;
   QString messageText() const { return message_->text(); }
-  // Shown over the top-left corner of the picture (the lock indicator); not owned before.
+  // Shown over the top-right corner of the picture (the lock indicator); not owned before.
   void setCornerWidget(QWidget* widget);
   // A click on the picture while the agent holds a lock asks this first (optional).
   void setConfirmation(LockConfirmation* confirmation) { confirmation_ = confirmation; }

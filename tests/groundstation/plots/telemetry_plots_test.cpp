@@ -95,13 +95,21 @@ TEST(TelemetryPlots, ANewSessionStartsTheGraphsAfreshAndTheCsvStaysMonotonicWith
   EXPECT_EQ(newest.size(), 2U);
 }
 
-TEST(TelemetryPlots, ASampleGoingBackInTimeWithinASessionIsNotKept) {
+TEST(TelemetryPlots, ACaptureClockGoingBackStartsANewSessionInsteadOfInterleaving) {
   FakeAgentClient client;
   TelemetryPlots plots(client);
-  client.publish(MakeTelemetry(1, 1, 0, 2'000'000));
-  client.publish(MakeTelemetry(2, 2, 0, 1'000'000));
-  EXPECT_EQ(plots.series().samples().size(), 1U);
-  EXPECT_EQ(plots.series().outOfOrder(), 1U);
+  for (int i = 0; i < 5; ++i) client.publish(MakeTelemetry(i, 1, 0, 363'000'000 + i * 100'000));
+  plots.redraw();
+  client.publish(MakeTelemetry(5, 2, 0, 1'000'000));  // the simulated camera's clock again at 1 s
+  client.publish(MakeTelemetry(6, 3, 0, 1'100'000));
+  plots.redraw();
+  EXPECT_EQ(plots.series().session(), 2);
+  EXPECT_EQ(plots.series().clockRestarts(), 1U);
+  QCPGraph* x = plots.graph(Curve::kDisplacementX);
+  ASSERT_EQ(x->dataCount(), 2);
+  EXPECT_DOUBLE_EQ(x->data()->at(0)->key, 0.0);
+  EXPECT_NEAR(x->data()->at(1)->key, 0.1, 1e-9);
+  EXPECT_TRUE(plots.stateText().contains(QStringLiteral("session 2")));
 }
 
 TEST(TelemetryPlots, PngExportWritesAnImage) {
