@@ -77,8 +77,12 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
       lock_in_status_(new LockIndicator(*lock_, LockIndicator::Size::kStatusBar, this)),
       banner_(new SessionBanner(*parts.view_client, this)),
       confirmation_(new LockConfirmation(*parts.view_client, *this, this)) {
-  // Space takes the photo even from inside a number field (which keeps its value).
-  new PriorityKeys(*this, {QKeySequence(Qt::Key_Space)}, this);
+  // Space takes the photo even from inside a number field (which keeps its value); Enter and
+  // Esc answer a pending question from there too (with none pending they reach the field).
+  new PriorityKeys(*this,
+                   {QKeySequence(Qt::Key_Space), QKeySequence(Qt::Key_Return),
+                    QKeySequence(Qt::Key_Enter), QKeySequence(Qt::Key_Escape)},
+                   this);
   setWindowTitle(tr("kapfix station"));
   setCentralWidget(video_);
   video_->setCornerWidget(lock_on_video_);
@@ -219,6 +223,9 @@ void MainWindow::showReplay(RecordingControls& recording) {
   parts.settings_group = QStringLiteral("replayWindow");
   replay_window_ = std::make_unique<MainWindow>(parts);
   replay_window_->setWindowTitle(tr("kapfix station: REPLAY (not live)"));
+  // Closing the replay's window ends the replay (later: not from inside its own close event).
+  connect(replay_window_.get(), &MainWindow::closed, &recording, &RecordingControls::backToLive,
+          Qt::QueuedConnection);
   replay_window_->show();
 }
 
@@ -240,6 +247,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   settings.setValue(settings_group_ + QStringLiteral("/geometry"), saveGeometry());
   settings.setValue(settings_group_ + QStringLiteral("/state"), saveState());
   QMainWindow::closeEvent(event);
+  emit closed();
 }
 
 }  // namespace kapfix::station

@@ -68,6 +68,10 @@ class MainWindow final : public QMainWindow {
   // The window a replay is shown in; nullptr while none is open.
   MainWindow* replayWindow() const { return replay_window_.get(); }
 
+ signals:
+  // The operator closed the window.
+  void closed();
+
  protected:
   void closeEvent(QCloseEvent* event) override;
   void resizeEvent(QResizeEvent* event) override;

@@ -116,6 +116,21 @@ TEST(MainWindow, F5WhileFixatingWaitsForEnter) {
   EXPECT_FALSE(window.confirmation().pending());
 }
 
+TEST(MainWindow, EnterInAFocusedNumberFieldAnswersTheQuestion) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
+  window.findChild<QDockWidget*>(QStringLiteral("photosDock"))->raise();
+  QDoubleSpinBox& seconds = window.photos().intervalSeconds();
+  seconds.setFocus();
+  ASSERT_TRUE(testing::WaitUntil([&] { return seconds.hasFocus(); }));
+  Fixate(client, 1, 3, 1);
+  QTest::keyClick(&seconds, Qt::Key_F5);
+  ASSERT_TRUE(window.confirmation().pending());
+  QTest::keyClick(&seconds, Qt::Key_Return);
+  EXPECT_NE(client.lastCommand(kapfix::v1::Command::kSetMode), nullptr);
+}
+
 TEST(MainWindow, EscapeCancelsTheQuestion) {
   FakeAgentClient client;
   MainWindow window({&client, nullptr, nullptr});

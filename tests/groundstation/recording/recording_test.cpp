@@ -105,8 +105,10 @@ TEST(Recording, ReplayOpensItsOwnWindowAndLeavesTheLiveViewsAlone) {
   EXPECT_EQ(window.ssp().table().rowCount(), 0);
   EXPECT_TRUE(window.plots().series().samples().empty());
   EXPECT_FALSE(window.status().linkText() == QStringLiteral("REPLAY"));
-  controls->backToLive();
-  EXPECT_EQ(window.replayWindow(), nullptr);
+  // Closing its window ends the replay.
+  replay.close();
+  EXPECT_TRUE(testing::WaitUntil([&] { return window.replayWindow() == nullptr; }));
+  EXPECT_FALSE(controls->replaying());
 }
 
 TEST(Recording, ReplayShowsTheRecordedSspResultsInTheSspPanel) {
