@@ -11,7 +11,6 @@
 
 #include "groundstation/client/agent_address.hpp"
 #include "groundstation/client/link_resync.hpp"
-#include "groundstation/client/switchable_agent_client.hpp"
 #include "groundstation/client/zmq_agent_client.hpp"
 #include "groundstation/main_window.hpp"
 #include "groundstation/photos/photo_store.hpp"
@@ -59,6 +58,13 @@ int main(int argc, char** argv) {
   const QCommandLineOption run_ssp(
       QStringLiteral("run-ssp"),
       QStringLiteral("With --screenshot: start SSP when the link is up."));
+  const QCommandLineOption fixate(
+      QStringLiteral("fixate"),
+      QStringLiteral("With --screenshot: confirm the recommended slice and take the picture "
+                     "while fixating."));
+  const QCommandLineOption size(QStringLiteral("size"),
+                                QStringLiteral("Window size WxH [px], e.g. 1366x768."),
+                                QStringLiteral("WxH"));
   const QCommandLineOption font_size(QStringLiteral("font-size"),
                                      QStringLiteral("Text size [pt] (default 11.5)."),
                                      QStringLiteral("pt"));
@@ -70,8 +76,8 @@ int main(int argc, char** argv) {
   const QCommandLineOption agent_key(QStringLiteral("agent-key"),
                                      QStringLiteral("The agent's public key file (its .pub)."),
                                      QStringLiteral("file"));
-  parser.addOptions(
-      {agent, command_port, stream_port, replay, screenshot, run_ssp, font_size, key, agent_key});
+  parser.addOptions({agent, command_port, stream_port, replay, screenshot, run_ssp, fixate, size,
+                     font_size, key, agent_key});
   parser.process(app);
 
   kapfix::station::ZmqAgentClientOptions client_options;
@@ -98,11 +104,20 @@ int main(int argc, char** argv) {
 
   using namespace kapfix::station;
   ZmqAgentClient live(client_options);
-  SwitchableAgentClient views(live);
-  // The window's toolbar takes ownership of these two.
+  // The window's toolbar takes ownership of these two. A replay opens a window of its own.
   auto* connection = new ConnectionBar(live);
-  auto* recording = new RecordingControls(views, live);
-  MainWindow window({&views, connection, recording});
+  auto* recording = new RecordingControls(live);
+  MainWindow window({&live, connection, recording});
+  if (parser.isSet(size)) {
+    const QStringList wh = parser.value(size).split(QLatin1Char('x'));
+    const int w = wh.value(0).toInt();
+    const int h = wh.value(1).toInt();
+    if (wh.size() != 2 || w < 320 || h < 240) {
+      std::fprintf(stderr, "kapfix-station: --size wants WxH of at least 320x240, e.g. 1366x768\n");
+      return 2;
+    }
+    window.resize(w, h);
+  }
   // A restarted station catches up from the newest photo it already holds, so photos the agent
   // took while no station was running arrive too; not from further back than kResyncHorizon
   // (an old folder holds other flights, not this one's).
@@ -129,7 +144,8 @@ int main(int argc, char** argv) {
     SspScreenshotOptions options;
     options.path = parser.value(screenshot);
     options.run_ssp = parser.isSet(run_ssp);
-    snapshot.emplace(window, views, window.ssp(), options);
+    options.fixate = parser.isSet(fixate);
+    snapshot.emplace(window, live, window.ssp(), options);
   }
   window.show();
   return QApplication::exec();

@@ -39,6 +39,8 @@ class FakeAgentClient final : public AgentClient {
   // Emits `message` as if it had arrived on its topic (stamped with a header first).
   void publish(const google::protobuf::Message& message);
   void setLink(const LinkState& state);
+  // A new agent process from now on: its stream sequences start again at 1.
+  void restartAgent() { sequence_ = 0; }
 
  private:
   std::vector<kapfix::v1::Command> commands_;

@@ -4,43 +4,42 @@
 
 #include <QFile>
 #include <QFileDialog>
+#include <QLabel>
+#include <QMouseEvent>
 #include <QSaveFile>
 #include <QToolBar>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
 
 namespace kapfix::station {
 namespace {
 
+constexpr int kRects = 4;  // residual, confidence, SSD distance, servos
+
 struct CurveStyle {
-  int rect;          // which stacked plot: 0 displacement, 1 quality, 2 servos
-  bool right_axis;   // drawn against the plot's right axis
+  int rect;          // which stacked plot: 0 residual, 1 confidence, 2 distance, 3 servos
   const char* name;  // legend text
   QColor colour;
   Qt::PenStyle style;
 };
 
 const std::array<CurveStyle, TelemetryPlots::kCurveCount> kCurves = {{
-    {0, false, QT_TRANSLATE_NOOP("TelemetryPlots", "x [px]"), QColor(31, 119, 180), Qt::SolidLine},
-    {0, false, QT_TRANSLATE_NOOP("TelemetryPlots", "y [px]"), QColor(214, 39, 40), Qt::SolidLine},
-    {1, false, QT_TRANSLATE_NOOP("TelemetryPlots", "confidence"), QColor(44, 160, 44),
+    {0, QT_TRANSLATE_NOOP("TelemetryPlots", "x [px]"), QColor(31, 119, 180), Qt::SolidLine},
+    {0, QT_TRANSLATE_NOOP("TelemetryPlots", "y [px]"), QColor(214, 39, 40), Qt::SolidLine},
+    {1, QT_TRANSLATE_NOOP("TelemetryPlots", "confidence [0..1]"), QColor(44, 160, 44),
      Qt::SolidLine},
-    {1, true, QT_TRANSLATE_NOOP("TelemetryPlots", "SSD distance (right)"), QColor(148, 103, 189),
-     Qt::SolidLine},
-    {2, false, QT_TRANSLATE_NOOP("TelemetryPlots", "pan cmd [deg]"), QColor(255, 127, 14),
-     Qt::DashLine},
-    {2, false, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt cmd [deg]"), QColor(23, 190, 207),
-     Qt::DashLine},
-    {2, false, QT_TRANSLATE_NOOP("TelemetryPlots", "pan [deg]"), QColor(255, 127, 14),
-     Qt::SolidLine},
-    {2, false, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt [deg]"), QColor(23, 190, 207),
-     Qt::SolidLine},
+    {2, QT_TRANSLATE_NOOP("TelemetryPlots", "SSD [grey²]"), QColor(148, 103, 189), Qt::SolidLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan cmd [deg]"), QColor(255, 127, 14), Qt::DashLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt cmd"), QColor(23, 190, 207), Qt::DashLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "pan [deg]"), QColor(255, 127, 14), Qt::SolidLine},
+    {3, QT_TRANSLATE_NOOP("TelemetryPlots", "tilt"), QColor(23, 190, 207), Qt::SolidLine},
 }};
 
-const std::array<const char*, 3> kRectTitles = {
-    QT_TRANSLATE_NOOP("TelemetryPlots", "[px]"),
-    QT_TRANSLATE_NOOP("TelemetryPlots", "[0..1]"),
-    QT_TRANSLATE_NOOP("TelemetryPlots", "[deg]"),
-};
+// Share of the height of each plot; the legends beside them name the curves with their units
+// (axis titles would not fit the small plots of a laptop screen).
+const std::array<double, kRects> kRectStretch = {1.8, 0.7, 0.7, 0.9};
+const std::array<int, kRects> kRectTicks = {2, 2, 2, 2};
 
 double Value(const TelemetrySample& sample, int curve) {
   switch (static_cast<TelemetryPlots::Curve>(curve)) {
@@ -70,7 +69,8 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     : QWidget(parent),
       plot_(new QCustomPlot(this)),
       pause_(new QAction(tr("Pause"), this)),
-      follow_(new QAction(tr("Follow"), this)) {
+      follow_(new QAction(tr("Follow"), this)),
+      state_(new QLabel(this)) {
   pause_->setCheckable(true);
   pause_->setShortcut(QKeySequence(Qt::Key_P));
   pause_->setToolTip(tr("Freeze the graphs; data is still collected (P)"));
@@ -89,43 +89,68 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   for (QAction* action : {pause_, follow_, reset, png, csv, clear_action}) {
     toolbar->addAction(action);
   }
+  state_->setObjectName(QStringLiteral("plotState"));
+  state_->setTextFormat(Qt::PlainText);
+  state_->setMargin(3);
+  QFont bold = state_->font();
+  bold.setBold(true);
+  state_->setFont(bold);
+  toolbar->addSeparator();
+  toolbar->addWidget(state_);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(0);
   layout->addWidget(toolbar);
   layout->addWidget(plot_, 1);
 
-  // Three stacked axis rects with aligned left margins and one shared time axis.
+  // Four stacked axis rects with aligned margins and one shared time axis; each legend in
+  // the column beside its plot.
   plot_->plotLayout()->clear();
   auto* margins = new QCPMarginGroup(plot_);
-  std::array<QCPAxisRect*, 3> rects{};
-  for (int i = 0; i < 3; ++i) {
+  std::array<QCPAxisRect*, kRects> rects{};
+  std::array<QCPLegend*, kRects> legends{};
+  QFont small = font();
+  small.setPointSizeF(small.pointSizeF() * 0.85);
+  plot_->plotLayout()->setRowSpacing(0);
+  for (int i = 0; i < kRects; ++i) {
+    const auto at = static_cast<std::size_t>(i);
     auto* rect = new QCPAxisRect(plot_);
     plot_->plotLayout()->addElement(i, 0, rect);
     rect->setMarginGroup(QCP::msLeft | QCP::msRight, margins);
-    rect->axis(QCPAxis::atLeft)->setLabel(tr(kRectTitles[static_cast<std::size_t>(i)]));
-    rect->axis(QCPAxis::atBottom)->setLabel(i == 2 ? tr("time [s]") : QString());
+    rect->axis(QCPAxis::atLeft)->ticker()->setTickCount(kRectTicks[at]);
+    rect->axis(QCPAxis::atLeft)->setTickLabelFont(small);
+    rect->axis(QCPAxis::atBottom)->setTickLabelFont(small);
+    rect->setMinimumMargins(QMargins(0, 2, 0, 2));
+    rect->axis(QCPAxis::atBottom)->setLabel(i == kRects - 1 ? tr("capture time [s]") : QString());
+    rect->axis(QCPAxis::atBottom)->setTickLabels(i == kRects - 1);
     rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
     auto* legend = new QCPLegend;
-    rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignRight);
+    plot_->plotLayout()->addElement(i, 1, legend);
     legend->setLayer(QStringLiteral("legend"));
-    legend->setBrush(QColor(255, 255, 255, 210));
-    legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);  // one row: keeps the curves visible
-    QFont small = font();
-    small.setPointSizeF(small.pointSizeF() * 0.85);
     legend->setFont(small);
     legend->setRowSpacing(0);
-    legend->setColumnSpacing(6);
-    rects[static_cast<std::size_t>(i)] = rect;
+    legend->setBorderPen(Qt::NoPen);
+    legend->setMargins(QMargins(4, 0, 4, 0));
+    legend->setFillOrder(QCPLayoutGrid::foRowsFirst);  // two rows, then a new column
+    legend->setWrap(2);
+    legend->setIconSize(16, 8);
+    legends[at] = legend;
+    rects[at] = rect;
   }
-  rects[1]->axis(QCPAxis::atRight)->setVisible(true);
-  rects[1]->axis(QCPAxis::atRight)->setNumberFormat(QStringLiteral("gb"));
+  for (int i = 0; i < kRects; ++i) {
+    plot_->plotLayout()->setRowStretchFactor(i, kRectStretch[static_cast<std::size_t>(i)]);
+  }
+  plot_->plotLayout()->setColumnStretchFactor(1, 0.01);  // the legends take what they need
   rects[1]->axis(QCPAxis::atLeft)->setRange(0, 1.05);
-  for (int i = 0; i < 3; ++i) {
+  // The distance reaches 10⁷..10⁸: short "5e+07"-style labels, few of them.
+  rects[2]->axis(QCPAxis::atLeft)->setNumberFormat(QStringLiteral("gb"));
+  rects[2]->axis(QCPAxis::atLeft)->setNumberPrecision(2);
+  rects[0]->axis(QCPAxis::atLeft)->setRange(-kResidualScalePx, kResidualScalePx);
+  for (int i = 0; i < kRects; ++i) {
     connect(rects[static_cast<std::size_t>(i)]->axis(QCPAxis::atBottom),
             qOverload<const QCPRange&>(&QCPAxis::rangeChanged), this,
             [rects, i](const QCPRange& range) {
-              for (int j = 0; j < 3; ++j) {
+              for (int j = 0; j < kRects; ++j) {
                 if (j != i)
                   rects[static_cast<std::size_t>(j)]->axis(QCPAxis::atBottom)->setRange(range);
               }
@@ -134,24 +159,27 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   for (int c = 0; c < kCurveCount; ++c) {
     const CurveStyle& style = kCurves[static_cast<std::size_t>(c)];
     QCPAxisRect* rect = rects[static_cast<std::size_t>(style.rect)];
-    QCPGraph* graph =
-        plot_->addGraph(rect->axis(QCPAxis::atBottom),
-                        rect->axis(style.right_axis ? QCPAxis::atRight : QCPAxis::atLeft));
+    QCPGraph* graph = plot_->addGraph(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
     graph->setName(tr(style.name));
     graph->setPen(QPen(style.colour, 1.6, style.style));
     graph->removeFromLegend(plot_->legend);
-    graph->addToLegend(qobject_cast<QCPLegend*>(rect->insetLayout()->elementAt(0)));
+    graph->addToLegend(legends[static_cast<std::size_t>(style.rect)]);
     graphs_[static_cast<std::size_t>(c)] = graph;
   }
   plot_->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
   plot_->setNoAntialiasingOnDrag(true);
-  // Zooming or dragging means the operator wants to look at something: stop following.
-  connect(plot_, &QCustomPlot::mousePress, this, [this] { follow_->setChecked(false); });
+  // Dragging or zooming means the operator wants to look at something: stop following, and
+  // say so above the plots. A plain click (press and release in place) changes nothing.
+  connect(plot_, &QCustomPlot::mouseMove, this, [this](QMouseEvent* event) {
+    if (event->buttons() != Qt::NoButton) follow_->setChecked(false);
+  });
   connect(plot_, &QCustomPlot::mouseWheel, this, [this] { follow_->setChecked(false); });
   connect(pause_, &QAction::toggled, this, [this](bool paused) {
+    showState();
     if (!paused) redraw();
   });
   connect(follow_, &QAction::toggled, this, [this](bool on) {
+    showState();
     if (on) {
       dirty_ = true;
       redraw();
@@ -170,6 +198,53 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   redraw_timer_.setInterval(1000 / kRedrawHz);
   connect(&redraw_timer_, &QTimer::timeout, this, &TelemetryPlots::redraw);
   redraw_timer_.start();
+  showState();
+}
+
+QString TelemetryPlots::stateText() const { return state_->text(); }
+
+QCPRange TelemetryPlots::residualRange() const {
+  return graphs_[static_cast<std::size_t>(Curve::kDisplacementX)]->valueAxis()->range();
+}
+
+void TelemetryPlots::showState() {
+  QString colour;
+  if (pause_->isChecked()) {
+    state_->setText(tr("PAUSED: the graphs are frozen, data is still collected (P resumes)"));
+    colour = QStringLiteral("#b35c00");
+  } else if (!follow_->isChecked()) {
+    state_->setText(tr("NOT FOLLOWING: the newest data may be off-screen (F follows)"));
+    colour = QStringLiteral("#b35c00");
+  } else {
+    state_->setText(tr("LIVE · session %1").arg(series_.session()));
+    colour = QStringLiteral("#1e7b34");
+  }
+  state_->setStyleSheet(
+      QStringLiteral("QLabel { color: white; background: %1; border-radius: 3px; }").arg(colour));
+}
+
+void TelemetryPlots::fitResidual() {
+  // ±kResidualScalePx unless something larger is in view: one spike widens the scale only
+  // while it is on screen.
+  const QCPRange keys = graphs_[0]->keyAxis()->range();
+  double largest = 0;
+  for (const Curve curve : {Curve::kDisplacementX, Curve::kDisplacementY}) {
+    const auto points = graphs_[static_cast<std::size_t>(curve)]->data();
+    for (auto it = points->findBegin(keys.lower, false);
+         it != points->end() && it->key <= keys.upper; ++it) {
+      largest = std::max(largest, std::abs(it->value));
+    }
+  }
+  const double half = largest <= kResidualScalePx ? kResidualScalePx : largest * 1.1;
+  graphs_[0]->valueAxis()->setRange(-half, half);
+}
+
+void TelemetryPlots::startSession() {
+  series_.startSession();
+  drawn_ = series_.appended();
+  for (QCPGraph* graph : graphs_) graph->data()->clear();
+  showState();
+  plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
 QCPGraph* TelemetryPlots::graph(Curve curve) const {
@@ -177,7 +252,14 @@ QCPGraph* TelemetryPlots::graph(Curve curve) const {
 }
 
 void TelemetryPlots::addSample(const kapfix::v1::Telemetry& telemetry) {
+  const int session = series_.session();
   series_.append(telemetry);
+  if (series_.session() != session) {
+    // The capture clock went back: the graphs start again rather than draw two clocks.
+    for (QCPGraph* graph : graphs_) graph->data()->clear();
+    drawn_ = series_.appended() - 1;
+    showState();
+  }
   dirty_ = true;
 }
 
@@ -195,7 +277,7 @@ void TelemetryPlots::redraw() {
     }
   }
   drawn_ = series_.appended();
-  if (!samples.empty()) {
+  if (!samples.empty() && samples.front().session == series_.session()) {
     const double oldest = samples.front().time_s;
     for (QCPGraph* graph : graphs_) graph->data()->removeBefore(oldest);
   }
@@ -203,10 +285,10 @@ void TelemetryPlots::redraw() {
     const double newest = samples.back().time_s;
     graphs_[0]->keyAxis()->setRange(std::max(0.0, newest - kFollowWindowS),
                                     std::max(kFollowWindowS, newest));
-    for (QCPGraph* graph : graphs_) {
-      if (graph != graphs_[static_cast<std::size_t>(Curve::kConfidence)]) {
-        graph->valueAxis()->rescale(true);
-      }
+    fitResidual();
+    for (const Curve curve : {Curve::kDistance, Curve::kPan}) {
+      // Pan and tilt share their axis: rescaling it for one fits all four servo curves.
+      graphs_[static_cast<std::size_t>(curve)]->valueAxis()->rescale(true);
     }
   }
   plot_->replot(QCustomPlot::rpQueuedReplot);
@@ -215,6 +297,7 @@ void TelemetryPlots::redraw() {
 void TelemetryPlots::clear() {
   series_.clear();
   drawn_ = 0;
+  showState();
   for (QCPGraph* graph : graphs_) graph->data()->clear();
   plot_->replot(QCustomPlot::rpQueuedReplot);
 }

@@ -1,10 +1,14 @@
 #pragma once
 
-// Live graphs of the telemetry (issue 4): displacement x and y, confidence and distance,
-// servo angles (commanded and reached), against time, in three stacked plots sharing the
-// time axis. Samples are collected all the time; the plots redraw at most kRedrawHz, follow
-// the newest data unless the operator zooms or drags, and can be paused. Export: PNG of the
-// plots, CSV of every sample held.
+// Live graphs of the telemetry (issue 4, 14): the residual displacement x and y, confidence,
+// SSD distance, servo angles (commanded and reached), against the agent's capture time, in
+// four stacked plots sharing the time axis, legends beside them (never over the newest
+// data). Samples are collected all the time; the plots redraw at most kRedrawHz. They follow
+// the newest data until the operator drags or zooms (a plain click changes nothing), and can
+// be paused; either state is written in words above the plots. The residual keeps a fixed
+// ±kResidualScalePx scale that grows for larger values in view and shrinks back once they
+// leave it. Each agent session starts the graphs afresh (startSession); the CSV export keeps
+// every session's samples, each with its number. Export: PNG of the plots, CSV.
 
 #include <QAction>
 #include <QTimer>
@@ -16,6 +20,8 @@
 
 class QCustomPlot;
 class QCPGraph;
+class QCPRange;
+class QLabel;
 
 namespace kapfix::station {
 
@@ -27,15 +33,16 @@ class TelemetryPlots final : public QWidget {
     kDisplacementX,
     kDisplacementY,
     kConfidence,
-    kDistance,
+    kDistance,  // its own small plot: its scale is nothing like the confidence's
     kPanTarget,
     kTiltTarget,
     kPan,
     kTilt,
   };
   static constexpr int kCurveCount = 8;
-  static constexpr int kRedrawHz = 20;            // [Hz]
-  static constexpr double kFollowWindowS = 20.0;  // [s] time span shown while following
+  static constexpr int kRedrawHz = 20;              // [Hz]
+  static constexpr double kFollowWindowS = 20.0;    // [s] time span shown while following
+  static constexpr double kResidualScalePx = 10.0;  // [px] the residual plot's least half-range
 
   explicit TelemetryPlots(AgentClient& client, QWidget* parent = nullptr);
 
@@ -45,14 +52,22 @@ class TelemetryPlots final : public QWidget {
 
   QAction* pauseAction() const { return pause_; }
   QAction* followAction() const { return follow_; }
+  // "LIVE", "PAUSED …" or "NOT FOLLOWING …": what the state line above the plots says.
+  QString stateText() const;
+  // [px] the residual plot's value range as drawn.
+  QCPRange residualRange() const;
 
   // Brings the graphs up to date now (the timer does it otherwise); nothing while paused.
   void redraw();
   bool exportPng(const QString& path) const;
   bool exportCsv(const QString& path) const;
   void clear();
+  // A new agent session: the graphs start empty on its own time origin.
+  void startSession();
 
  private:
+  void showState();
+  void fitResidual();
   void addSample(const kapfix::v1::Telemetry& telemetry);
   void chooseExport(bool png);
 
@@ -63,6 +78,7 @@ class TelemetryPlots final : public QWidget {
   std::array<QCPGraph*, kCurveCount> graphs_{};
   QAction* pause_;
   QAction* follow_;
+  QLabel* state_;
   QTimer redraw_timer_;
 };
 

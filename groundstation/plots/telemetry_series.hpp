@@ -1,7 +1,10 @@
 #pragma once
 
 // The telemetry the graphs show, kept as numbers (bounded) so that the plots can be paused,
-// rebuilt and exported to CSV exactly as measured.
+// rebuilt and exported to CSV exactly as measured. Time is the agent's capture time; each
+// session has its own origin and number, and within a session time only goes forward. A new
+// session starts when the agent restarts (startSession) and when its capture clock goes back
+// (the simulated camera counts from 0 again), so samples of two clocks never interleave.
 
 #include <QString>
 #include <cstddef>
@@ -15,16 +18,18 @@ class QIODevice;
 namespace kapfix::station {
 
 struct TelemetrySample {
-  double time_s = 0;           // [s] since the first sample's capture time
-  std::uint64_t frame = 0;     // [count] agent frame number
-  double x_px = 0;             // [px] displacement, sub-pixel part included
-  double y_px = 0;             // [px]
-  double confidence = 0;       // [0..1]
-  double distance = 0;         // [grey level²] SSD at the match
-  double pan_target_deg = 0;   // [deg] commanded
-  double tilt_target_deg = 0;  // [deg]
-  double pan_deg = 0;          // [deg] reached
-  double tilt_deg = 0;         // [deg]
+  int session = 1;              // [count] agent session the sample belongs to (1 = first)
+  double time_s = 0;            // [s] since the session's first capture time
+  std::int64_t capture_us = 0;  // [µs since epoch] the agent's capture time
+  std::uint64_t frame = 0;      // [count] agent frame number
+  double x_px = 0;              // [px] displacement, sub-pixel part included
+  double y_px = 0;              // [px]
+  double confidence = 0;        // [0..1]
+  double distance = 0;          // [grey level²] SSD at the match
+  double pan_target_deg = 0;    // [deg] commanded
+  double tilt_target_deg = 0;   // [deg]
+  double pan_deg = 0;           // [deg] reached
+  double tilt_deg = 0;          // [deg]
 };
 
 class TelemetrySeries {
@@ -34,7 +39,13 @@ class TelemetrySeries {
 
   explicit TelemetrySeries(std::size_t capacity = kDefaultCapacity) : capacity_(capacity) {}
 
+  // Appends one sample; a capture time earlier than the session's newest starts a new session.
   const TelemetrySample& append(const kapfix::v1::Telemetry& telemetry);
+  // The following samples belong to a new session, with their own time origin.
+  void startSession();
+  int session() const { return session_; }
+  // [count] sessions started because the capture time went back.
+  std::uint64_t clockRestarts() const { return clock_restarts_; }
   void clear();
 
   const std::deque<TelemetrySample>& samples() const { return samples_; }
@@ -47,8 +58,12 @@ class TelemetrySeries {
  private:
   std::size_t capacity_;
   std::deque<TelemetrySample> samples_;
-  std::int64_t origin_us_ = 0;  // [µs since epoch] capture time of the first sample
+  int session_ = 1;
+  bool session_empty_ = true;
+  std::int64_t origin_us_ = 0;  // [µs since epoch] capture time of the session's first sample
+  std::int64_t newest_us_ = 0;  // [µs since epoch] capture time of the session's newest sample
   std::uint64_t appended_ = 0;
+  std::uint64_t clock_restarts_ = 0;
 };
 
 }  // namespace kapfix::station

@@ -8,6 +8,7 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QToolButton>
+#include <utility>
 
 namespace kapfix::station {
 namespace {
@@ -18,6 +19,8 @@ QString SessionsFolder() {
   return QSettings().value(QStringLiteral("recording/folder"), fallback).toString();
 }
 
+constexpr int kMessageWidthEm = 22;  // [characters] the message never pushes the toolbar
+
 QToolButton* Button(QAction* action, QWidget* parent) {
   auto* button = new QToolButton(parent);
   button->setDefaultAction(action);
@@ -27,12 +30,9 @@ QToolButton* Button(QAction* action, QWidget* parent) {
 
 }  // namespace
 
-RecordingControls::RecordingControls(SwitchableAgentClient& views, AgentClient& live,
-                                     QWidget* parent)
+RecordingControls::RecordingControls(AgentClient& live, QWidget* parent)
     : QWidget(parent),
-      views_(views),
-      live_(live),
-      recording_(views),
+      recording_(live),
       record_(new QAction(tr("● Record"), this)),
       replay_(new QAction(tr("Replay…"), this)),
       play_(new QAction(tr("Play"), this)),
@@ -41,12 +41,13 @@ RecordingControls::RecordingControls(SwitchableAgentClient& views, AgentClient& 
       message_(new QLabel(this)) {
   record_->setCheckable(true);
   record_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_R));
-  record_->setToolTip(tr("Record telemetry, video and events to a file (Ctrl+R)"));
+  record_->setToolTip(
+      tr("Start or stop recording telemetry, video and events into the photos folder (Ctrl+R)"));
   replay_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_O));
-  replay_->setToolTip(tr("Replay a recorded session in these views, without an agent (Ctrl+O)"));
+  replay_->setToolTip(tr("Replay a recorded session in a window of its own (Ctrl+O)"));
   play_->setCheckable(true);
   play_->setToolTip(tr("Play or pause the replay"));
-  live_action_->setToolTip(tr("Back to the live agent"));
+  live_action_->setToolTip(tr("Close the replay"));
   for (const double speed : {0.5, 1.0, 2.0, 4.0, 10.0}) {
     speed_->addItem(QStringLiteral("%1×").arg(speed), speed);
   }
@@ -59,6 +60,8 @@ RecordingControls::RecordingControls(SwitchableAgentClient& views, AgentClient& 
   layout->addWidget(Button(play_, this));
   layout->addWidget(speed_);
   layout->addWidget(Button(live_action_, this));
+  message_->setObjectName(QStringLiteral("recordingMessage"));
+  message_->setFixedWidth(message_->fontMetrics().averageCharWidth() * kMessageWidthEm);
   layout->addWidget(message_);
 
   connect(record_, &QAction::triggered, this, &RecordingControls::toggleRecording);
@@ -75,9 +78,8 @@ RecordingControls::RecordingControls(SwitchableAgentClient& views, AgentClient& 
   connect(speed_, &QComboBox::currentIndexChanged, this,
           [this] { replay_client_.setSpeed(speed_->currentData().toDouble()); });
   connect(&replay_client_, &ReplayAgentClient::finished, this, &RecordingControls::showState);
-  connect(&recording_, &SessionRecording::failed, this, [this](const QString& reason) {
-    message_->setText(tr("Recording stopped: %1").arg(reason));
-  });
+  connect(&recording_, &SessionRecording::failed, this,
+          [this](const QString& reason) { setMessage(tr("Recording stopped: %1").arg(reason)); });
   connect(&recording_, &SessionRecording::recordingChanged, this, &RecordingControls::showState);
   showState();
 }
@@ -85,7 +87,7 @@ RecordingControls::RecordingControls(SwitchableAgentClient& views, AgentClient& 
 bool RecordingControls::startRecording(const QString& path, QString* error) {
   QString why;
   const bool ok = recording_.start(path, &why);
-  if (!ok) message_->setText(tr("Cannot record: %1").arg(why));
+  if (!ok) setMessage(tr("Cannot record: %1").arg(why));
   if (error != nullptr) *error = why;
   showState();
   return ok;
@@ -94,7 +96,8 @@ bool RecordingControls::startRecording(const QString& path, QString* error) {
 void RecordingControls::stopRecording() {
   if (!recording_.recording()) return;
   recording_.stop();
-  message_->setText(tr("Recorded to %1").arg(QDir::toNativeSeparators(recording_.path())));
+  setMessage(tr("Recorded %1").arg(QFileInfo(recording_.path()).fileName()),
+             QDir::toNativeSeparators(recording_.path()));
   showState();
 }
 
@@ -102,42 +105,49 @@ bool RecordingControls::startReplay(const QString& path, QString* error) {
   stopRecording();
   QString why;
   if (!replay_client_.open(path, &why)) {
-    message_->setText(tr("Cannot replay: %1").arg(why));
+    setMessage(tr("Cannot replay: %1").arg(why));
     if (error != nullptr) *error = why;
     return false;
   }
-  views_.setSource(replay_client_);
+  replaying_ = true;
+  emit replayStarted();  // its window connects before anything is delivered
   replay_client_.setSpeed(speed_->currentData().toDouble());
   replay_client_.play();
-  message_->clear();
+  setMessage(QString());
   showState();
   return true;
 }
 
 void RecordingControls::backToLive() {
   replay_client_.close();
-  views_.setSource(live_);
+  const bool was_replaying = std::exchange(replaying_, false);
   showState();
+  if (was_replaying) emit replayClosed();
+}
+
+QString RecordingControls::startRecordingInFolder() {
+  const QString folder = folder_ ? folder_() : SessionsFolder();
+  QDir().mkpath(folder);
+  const QString path = QDir(folder).filePath(
+      QStringLiteral("session-%1.kfxrec")
+          .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-HHmmss"))));
+  return startRecording(path) ? path : QString();
+}
+
+QString RecordingControls::messageText() const { return message_text_; }
+
+void RecordingControls::setMessage(const QString& text, const QString& tooltip) {
+  message_text_ = text;
+  message_->setText(message_->fontMetrics().elidedText(text, Qt::ElideMiddle, message_->width()));
+  message_->setToolTip(tooltip.isEmpty() ? text : tooltip);
 }
 
 void RecordingControls::toggleRecording(bool on) {
-  if (!on) {
+  if (on) {
+    startRecordingInFolder();
+  } else {
     stopRecording();
-    return;
   }
-  const QString folder = SessionsFolder();
-  QDir().mkpath(folder);
-  const QString suggested = QDir(folder).filePath(
-      QStringLiteral("session-%1.kfxrec")
-          .arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-HHmmss"))));
-  const QString path = QFileDialog::getSaveFileName(this, tr("Record session to"), suggested,
-                                                    tr("kapfix recording (*.kfxrec)"));
-  if (path.isEmpty()) {
-    showState();
-    return;
-  }
-  QSettings().setValue(QStringLiteral("recording/folder"), QFileInfo(path).absolutePath());
-  startRecording(path);
 }
 
 void RecordingControls::chooseReplay() {
@@ -148,7 +158,7 @@ void RecordingControls::chooseReplay() {
 }
 
 void RecordingControls::showState() {
-  const bool replaying = &views_.source() == &replay_client_;
+  const bool replaying = replaying_;
   record_->setChecked(recording_.recording());
   record_->setEnabled(!replaying);
   record_->setText(recording_.recording() ? tr("■ Stop recording") : tr("● Record"));
@@ -158,9 +168,10 @@ void RecordingControls::showState() {
   speed_->setEnabled(replaying);
   live_action_->setEnabled(replaying);
   if (recording_.recording()) {
-    message_->setText(tr("Recording to %1").arg(QFileInfo(recording_.path()).fileName()));
+    setMessage(tr("● REC %1").arg(QFileInfo(recording_.path()).fileName()),
+               QDir::toNativeSeparators(recording_.path()));
   } else if (replaying && replay_client_.atEnd()) {
-    message_->setText(tr("Replay finished"));
+    setMessage(tr("Replay finished"));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "groundstation/keys/lock_confirmation.hpp"
 #include "groundstation/slices/slice_graph_grid.hpp"
 
 namespace kapfix::station {
@@ -65,7 +66,8 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // Each column as wide as its header and numbers (never truncated); a narrow dock scrolls.
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
   // Room for the thesis's nine slices and the header, no more: the graphs get the rest.
   table_->setMinimumHeight(11 * (table_->fontMetrics().height() + 6));
@@ -87,7 +89,13 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   layout->addWidget(message_);
   layout->addWidget(graphs_, 1);
 
-  connect(run_, &QAction::triggered, this, &SspPanel::runSsp);
+  connect(run_, &QAction::triggered, this, [this] {
+    if (confirmation_ == nullptr) {
+      runSsp();
+    } else {
+      confirmation_->request(tr("start SSP"), [this] { runSsp(); });
+    }
+  });
   connect(confirm_, &QAction::triggered, this, [this] {
     if (recommended_ > 0) pickSlice(recommended_);
   });
@@ -176,6 +184,19 @@ void SspPanel::showReport(const kapfix::v1::SliceReport& report) {
                                 .arg(recommended_)
                           : tr("SSP finished without a recommendation"));
   }
+}
+
+void SspPanel::clearSession() {
+  recommended_ = 0;
+  in_use_ = 0;
+  table_->setRowCount(0);
+  graphs_->showReport(kapfix::v1::SliceReport());
+  confirm_->setEnabled(false);
+  confirm_->setText(tr("Confirm recommended"));
+  use_selected_->setEnabled(false);
+  progress_->setRange(0, 1);
+  progress_->setValue(0);
+  message_->clear();
 }
 
 unsigned SspPanel::sliceOfRow(int row) const {

@@ -18,6 +18,7 @@
 
 namespace kapfix::station {
 
+class LockConfirmation;
 class SliceGraphGrid;
 
 class SspPanel final : public QWidget {
@@ -38,6 +39,10 @@ class SspPanel final : public QWidget {
 
   // Sends select_slice `index` and reports the outcome in the panel.
   void pickSlice(unsigned index);
+  // Starting SSP while the agent holds a lock asks this first (optional).
+  void setConfirmation(LockConfirmation* confirmation) { confirmation_ = confirmation; }
+  // A new session: the old agent's results, slice in use and messages go.
+  void clearSession();
 
  private:
   void runSsp();
@@ -56,6 +61,7 @@ class SspPanel final : public QWidget {
   QLabel* message_;
   unsigned recommended_ = 0;
   unsigned in_use_ = 0;
+  LockConfirmation* confirmation_ = nullptr;
 };
 
 }  // namespace kapfix::station

@@ -9,15 +9,27 @@
 #include "groundstation/slices/ssp_panel.hpp"
 
 namespace kapfix::station {
+namespace {
+
+constexpr int kFixateSettleMs = 6000;  // [ms] more than the lock indicator's RMS window
+
+}  // namespace
 
 SspScreenshot::SspScreenshot(QWidget& window, AgentClient& client, SspPanel& ssp,
                              SspScreenshotOptions options, QObject* parent)
     : QObject(parent), window_(window), options_(std::move(options)) {
   connect(&client, &AgentClient::sliceReportReceived, this,
-          [this](const kapfix::v1::SliceReport& report) {
+          [this, &ssp](const kapfix::v1::SliceReport& report) {
             if (!report.finished() || scheduled_) return;
             scheduled_ = true;
-            QTimer::singleShot(options_.delay_ms, this, &SspScreenshot::take);
+            if (options_.fixate) {
+              // After the report's own state settles, as an operator would confirm.
+              QTimer::singleShot(500, this, [&ssp] { ssp.confirmAction()->trigger(); });
+            }
+            // Fixating: long enough for the 5 s RMS to leave the acquisition behind.
+            QTimer::singleShot(
+                options_.fixate ? options_.delay_ms + kFixateSettleMs : options_.delay_ms, this,
+                &SspScreenshot::take);
           });
   if (options_.run_ssp) {
     auto start = [this, &ssp](const LinkState& state) {

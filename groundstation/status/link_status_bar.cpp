@@ -30,7 +30,9 @@ LinkStatusBar::LinkStatusBar(AgentClient& client, QWidget* parent)
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   for (QLabel* label : {link_, latency_, fps_, mode_, slice_}) {
-    label->setMinimumWidth(130);
+    // Room for the widest usual value, so the line does not jump; not more (1366 px laptops).
+    label->setMinimumWidth(label->fontMetrics().horizontalAdvance(QStringLiteral("NOT CONNECTED")) /
+                           (label == link_ ? 1 : 2));
     layout->addWidget(label);
   }
   layout->addStretch(1);
@@ -76,6 +78,10 @@ void LinkStatusBar::showLink(const LinkState& state) {
     source += QStringLiteral(": ") + state.handshake_failure;
   }
   source_->setText(source);
+  greyed_ = !state.up && !state.replay;
+  for (QLabel* label : {fps_, mode_, slice_}) {
+    label->setStyleSheet(greyed_ ? QStringLiteral("QLabel { color: #9aa0a6; }") : QString());
+  }
 }
 
 void LinkStatusBar::showTelemetry(const kapfix::v1::Telemetry& telemetry) {

@@ -2,7 +2,8 @@
 
 // The always-visible line at the bottom of the window (issue 4): link state, latency, agent
 // fps, mode, slice in use, and which agent or recording the views show. Large type: it is
-// read at arm's length in daylight.
+// read at arm's length in daylight. While the link is down the agent's values stay, greyed:
+// they are the last heard, not the present.
 
 #include <QLabel>
 #include <QWidget>
@@ -22,6 +23,8 @@ class LinkStatusBar final : public QWidget {
   QString latencyText() const { return latency_->text(); }
   QString fpsText() const { return fps_->text(); }
   QString modeText() const { return mode_->text(); }
+  // Link down: fps, mode and slice are the last heard, greyed (issue 14).
+  bool valuesGreyed() const { return greyed_; }
 
  private:
   void showLink(const LinkState& state);
@@ -34,6 +37,7 @@ class LinkStatusBar final : public QWidget {
   QLabel* mode_;
   QLabel* slice_;
   QLabel* source_;
+  bool greyed_ = false;
 };
 
 }  // namespace kapfix::station

@@ -1,10 +1,13 @@
 #include "groundstation/video/video_panel.hpp"
 
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QPointer>
 #include <QSettings>
 #include <QVBoxLayout>
 #include <array>
+
+#include "groundstation/keys/lock_confirmation.hpp"
 
 namespace kapfix::station {
 namespace {
@@ -32,7 +35,11 @@ QString SettingsKey(const char* name) { return QStringLiteral("video/") + QLatin
 }  // namespace
 
 VideoPanel::VideoPanel(AgentClient& client, QWidget* parent)
-    : QWidget(parent), client_(client), view_(new VideoView(this)), message_(new QLabel(this)) {
+    : QWidget(parent),
+      client_(client),
+      view_(new VideoView(this)),
+      message_(new QLabel(this)),
+      picture_layout_(new QGridLayout) {
   auto* switches = new QHBoxLayout;
   const QSettings settings;
   for (const Switch& entry : kSwitches) {
@@ -49,10 +56,15 @@ VideoPanel::VideoPanel(AgentClient& client, QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addLayout(switches);
-  layout->addWidget(view_, 1);
+  // The picture and what floats over its corner share one cell.
+  picture_layout_->setContentsMargins(0, 0, 0, 0);
+  picture_layout_->addWidget(view_, 0, 0);
+  layout->addLayout(picture_layout_, 1);
   applySwitches();
 
   connect(&client_, &AgentClient::videoFrameReceived, view_, &VideoView::showFrame);
+  connect(&client_, &AgentClient::linkChanged, this,
+          [this](const LinkState& state) { view_->setStale(!state.up && !state.replay); });
   connect(view_, &VideoView::sliceClicked, this, &VideoPanel::pickSlice);
 }
 
@@ -71,7 +83,27 @@ void VideoPanel::applySwitches() {
   view_->setOverlayOptions(options);
 }
 
+void VideoPanel::setCornerWidget(QWidget* widget) {
+  widget->setParent(this);
+  // Top right: the slice numbers are on the left, the crosshair in the middle.
+  picture_layout_->addWidget(widget, 0, 0, Qt::AlignTop | Qt::AlignRight);
+  widget->raise();
+}
+
+void VideoPanel::clearSession() {
+  view_->clearPicture();
+  message_->clear();
+}
+
 void VideoPanel::pickSlice(unsigned index) {
+  if (confirmation_ == nullptr) {
+    sendSlice(index);
+    return;
+  }
+  confirmation_->request(tr("fixate on slice %1").arg(index), [this, index] { sendSlice(index); });
+}
+
+void VideoPanel::sendSlice(unsigned index) {
   kapfix::v1::Command command;
   command.set_select_slice(index);
   message_->setText(tr("Slice %1 …").arg(index));

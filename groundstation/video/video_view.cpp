@@ -21,6 +21,32 @@ VideoView::VideoView(QWidget* parent) : QWidget(parent) {
   setAttribute(Qt::WA_OpaquePaintEvent);
   setCursor(Qt::CrossCursor);
   setToolTip(tr("Click a band of the picture to fixate on that slice"));
+  stale_tick_.setInterval(250);  // [ms] the age shown counts up
+  connect(&stale_tick_, &QTimer::timeout, this, qOverload<>(&QWidget::update));
+}
+
+void VideoView::setStale(bool stale) {
+  stale_ = stale;
+  if (stale) {
+    stale_tick_.start();
+  } else {
+    stale_tick_.stop();
+  }
+  update();
+}
+
+QString VideoView::staleText() const {
+  if (!stale_) return {};
+  if (image_.isNull() || !frame_age_.isValid()) return tr("LINK DOWN: no video");
+  return tr("STALE: last frame %1 s ago")
+      .arg(static_cast<double>(frame_age_.elapsed()) / 1000.0, 0, 'f', 1);
+}
+
+void VideoView::clearPicture() {
+  image_ = QImage();
+  overlay_.Clear();
+  frame_number_ = 0;
+  update();
 }
 
 void VideoView::showFrame(const kapfix::v1::VideoFrame& frame) {
@@ -35,7 +61,8 @@ void VideoView::showFrame(const kapfix::v1::VideoFrame& frame) {
   frame_width_px_ = frame.frame_width_px() > 0 ? frame.frame_width_px() : image_.width();
   frame_height_px_ = frame.frame_height_px() > 0 ? frame.frame_height_px() : image_.height();
   frame_number_ = frame.frame_number();
-  update();
+  frame_age_.start();
+  setStale(false);
 }
 
 void VideoView::setOverlayOptions(const OverlayOptions& options) {
@@ -67,7 +94,7 @@ void VideoView::paintEvent(QPaintEvent* /*event*/) {
     QFont font = painter.font();
     font.setPointSizeF(font.pointSizeF() * 1.6);
     painter.setFont(font);
-    painter.drawText(rect(), Qt::AlignCenter, tr("No video"));
+    painter.drawText(rect(), Qt::AlignCenter, stale_ ? staleText() : tr("No video"));
     return;
   }
   const QRectF picture = pictureRect();
@@ -124,6 +151,24 @@ void VideoView::paintEvent(QPaintEvent* /*event*/) {
     painter.drawLine(centre - QPointF(0, arm), centre + QPointF(0, arm));
     painter.drawEllipse(centre, arm / 3, arm / 3);
   }
+  if (stale_) paintStale(painter, picture);
+}
+
+void VideoView::paintStale(QPainter& painter, const QRectF& picture) {
+  // Over everything, in widget pixels: the picture is dimmed and a red band says how old it is.
+  painter.resetTransform();
+  painter.fillRect(picture, QColor(0, 0, 0, 120));
+  painter.setPen(QPen(QColor(179, 38, 30), 6));
+  painter.drawRect(picture.adjusted(3, 3, -3, -3));
+  QFont font = painter.font();
+  font.setBold(true);
+  font.setPixelSize(std::max(16, static_cast<int>(picture.height() / 14)));
+  painter.setFont(font);
+  const QRectF band(picture.left(), picture.center().y() - font.pixelSize(), picture.width(),
+                    2.0 * font.pixelSize());
+  painter.fillRect(band, QColor(179, 38, 30, 220));
+  painter.setPen(Qt::white);
+  painter.drawText(band, Qt::AlignCenter, staleText());
 }
 
 void VideoView::mousePressEvent(QMouseEvent* event) {

@@ -4,11 +4,15 @@
 // video.proto drawn on top in camera-frame geometry. A click on the picture names the slice
 // under it.
 
+#include <QElapsedTimer>
 #include <QImage>
+#include <QTimer>
 #include <QWidget>
 
 #include "groundstation/video/overlay_options.hpp"
 #include "kapfix/v1/video.pb.h"
+
+class QPainter;
 
 namespace kapfix::station {
 
@@ -21,6 +25,13 @@ class VideoView final : public QWidget {
   void showFrame(const kapfix::v1::VideoFrame& frame);
   void setOverlayOptions(const OverlayOptions& options);
   const OverlayOptions& overlayOptions() const { return options_; }
+  // Link down: the picture is marked stale, with the age of its frame, until a new frame.
+  void setStale(bool stale);
+  bool stale() const { return stale_; }
+  // What the stale marking says ("" while live).
+  QString staleText() const;
+  // Forgets the picture (a new session: the old one's frame is not this agent's).
+  void clearPicture();
   // A frame whose JPEG did not decode keeps the last picture.
   bool hasPicture() const { return !image_.isNull(); }
   std::uint64_t frameNumber() const { return frame_number_; }
@@ -41,12 +52,17 @@ class VideoView final : public QWidget {
   void mousePressEvent(QMouseEvent* event) override;
 
  private:
+  void paintStale(QPainter& painter, const QRectF& picture);
+
   QImage image_;
   kapfix::v1::Overlay overlay_;
   double frame_width_px_ = 0;   // [px] camera frame the overlay refers to
   double frame_height_px_ = 0;  // [px]
   std::uint64_t frame_number_ = 0;
   OverlayOptions options_;
+  bool stale_ = false;
+  QElapsedTimer frame_age_;  // since the picture shown arrived
+  QTimer stale_tick_;        // repaints the age while stale
 };
 
 }  // namespace kapfix::station

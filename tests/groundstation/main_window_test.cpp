@@ -1,39 +1,259 @@
 #include "groundstation/main_window.hpp"
 
 #include <gtest/gtest.h>
+#include <qcustomplot.h>
 
+#include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QSettings>
+#include <QStatusBar>
+#include <QTabBar>
+#include <QTemporaryDir>
 #include <QTest>
 
 #include "groundstation/client/fake_agent_client.hpp"
+#include "groundstation/events/event_log.hpp"
+#include "groundstation/keys/lock_confirmation.hpp"
 #include "groundstation/photos/photos_panel.hpp"
+#include "groundstation/plots/telemetry_plots.hpp"
+#include "groundstation/session/session_banner.hpp"
+#include "groundstation/session/session_tracker.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/link_status_bar.hpp"
+#include "groundstation/status/lock_indicator.hpp"
+#include "groundstation/status/lock_monitor.hpp"
+#include "groundstation/video/video_panel.hpp"
 #include "tests/groundstation/station_test_support.hpp"
 
 namespace kapfix::station {
 namespace {
 
-TEST(MainWindow, SpaceInTheWindowTakesAPhoto) {
-  FakeAgentClient client;
-  MainWindow window({&client, nullptr, nullptr});
+using testing::MakeSliceReport;
+using testing::MakeTelemetry;
+using testing::MakeVideoFrame;
+using testing::ProcessEvents;
+
+constexpr std::int64_t kFrameUs = 33'333;  // [µs] 30 fps
+
+LinkState Up() {
+  LinkState state;
+  state.up = true;
+  state.source = QStringLiteral("fake");
+  return state;
+}
+
+LinkState Down() {
+  LinkState state;
+  state.source = QStringLiteral("fake");
+  return state;
+}
+
+// The agent fixating: `frames` telemetry messages with a residual of `x_px`.
+void Fixate(FakeAgentClient& client, int first, int frames, int x_px, bool lock_lost = false) {
+  for (int i = first; i < first + frames; ++i) {
+    kapfix::v1::Telemetry telemetry = MakeTelemetry(i, x_px, 0, 1'000'000 + i * kFrameUs);
+    telemetry.set_lock_lost(lock_lost);
+    client.publish(telemetry);
+  }
+}
+
+void ShowActive(MainWindow& window) {
   window.show();
   window.activateWindow();
   ASSERT_TRUE(QTest::qWaitForWindowActive(&window));
+}
+
+// Where `widget` is, in the window's coordinates.
+QRect InWindow(const QWidget& widget, const QWidget& window) {
+  return {widget.mapTo(&window, QPoint(0, 0)), widget.size()};
+}
+
+TEST(MainWindow, SpaceInTheWindowTakesAPhoto) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
   QTest::keyClick(&window, Qt::Key_Space);
   EXPECT_NE(client.lastCommand(kapfix::v1::Command::kTakePhoto), nullptr);
 }
 
-TEST(MainWindow, F5StartsSsp) {
+TEST(MainWindow, SpaceInAFocusedNumberFieldTakesAPhotoAndKeepsTheValue) {
   FakeAgentClient client;
   MainWindow window({&client, nullptr, nullptr});
-  window.show();
-  window.activateWindow();
-  ASSERT_TRUE(QTest::qWaitForWindowActive(&window));
+  ShowActive(window);
+  window.findChild<QDockWidget*>(QStringLiteral("photosDock"))->raise();
+  QDoubleSpinBox& seconds = window.photos().intervalSeconds();
+  seconds.setValue(12.5);
+  seconds.setFocus();
+  ASSERT_TRUE(testing::WaitUntil([&] { return seconds.hasFocus(); }));
+  QTest::keyClick(&seconds, Qt::Key_Space);
+  EXPECT_NE(client.lastCommand(kapfix::v1::Command::kTakePhoto), nullptr);
+  EXPECT_DOUBLE_EQ(seconds.value(), 12.5);
+  EXPECT_EQ(seconds.text(), QStringLiteral("12.5 s"));
+}
+
+TEST(MainWindow, F5StartsSspAtOnceWhenNoLockIsHeld) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
   QTest::keyClick(&window, Qt::Key_F5);
   const auto* command = client.lastCommand(kapfix::v1::Command::kSetMode);
   ASSERT_NE(command, nullptr);
   EXPECT_EQ(command->set_mode().mode(), kapfix::v1::MODE_SSP);
+}
+
+TEST(MainWindow, F5WhileFixatingWaitsForEnter) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
+  Fixate(client, 1, 3, 1);
+  QTest::keyClick(&window, Qt::Key_F5);
+  EXPECT_EQ(client.lastCommand(kapfix::v1::Command::kSetMode), nullptr);
+  EXPECT_TRUE(window.banner().text().contains(QStringLiteral("Enter")));
+  QTest::keyClick(&window, Qt::Key_Return);
+  const auto* command = client.lastCommand(kapfix::v1::Command::kSetMode);
+  ASSERT_NE(command, nullptr);
+  EXPECT_EQ(command->set_mode().mode(), kapfix::v1::MODE_SSP);
+  EXPECT_FALSE(window.confirmation().pending());
+}
+
+TEST(MainWindow, EnterInAFocusedNumberFieldAnswersTheQuestion) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
+  window.findChild<QDockWidget*>(QStringLiteral("photosDock"))->raise();
+  QDoubleSpinBox& seconds = window.photos().intervalSeconds();
+  seconds.setFocus();
+  ASSERT_TRUE(testing::WaitUntil([&] { return seconds.hasFocus(); }));
+  Fixate(client, 1, 3, 1);
+  QTest::keyClick(&seconds, Qt::Key_F5);
+  ASSERT_TRUE(window.confirmation().pending());
+  QTest::keyClick(&seconds, Qt::Key_Return);
+  EXPECT_NE(client.lastCommand(kapfix::v1::Command::kSetMode), nullptr);
+}
+
+TEST(MainWindow, EscapeCancelsTheQuestion) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
+  Fixate(client, 1, 3, 1);
+  QTest::keyClick(&window, Qt::Key_F5);
+  QTest::keyClick(&window, Qt::Key_Escape);
+  QTest::keyClick(&window, Qt::Key_Return);
+  EXPECT_EQ(client.lastCommand(kapfix::v1::Command::kSetMode), nullptr);
+}
+
+TEST(MainWindow, ClickOnTheVideoWhileFixatingWaitsForEnter) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  window.resize(1366, 768);
+  ShowActive(window);
+  client.publish(MakeVideoFrame(640, 480, 9));
+  Fixate(client, 1, 3, 1);
+  ProcessEvents();
+  VideoView& view = window.video().view();
+  QTest::mouseClick(&view, Qt::LeftButton, {}, view.sliceCentre(3).toPoint());
+  EXPECT_EQ(client.lastCommand(kapfix::v1::Command::kSelectSlice), nullptr);
+  QTest::keyClick(&window, Qt::Key_Return);
+  const auto* command = client.lastCommand(kapfix::v1::Command::kSelectSlice);
+  ASSERT_NE(command, nullptr);
+  EXPECT_EQ(command->select_slice(), 3U);
+}
+
+TEST(MainWindow, LockIndicatorGoesLostWhenTheLockIsLost) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  client.setLink(Up());
+  Fixate(client, 1, 30, 1);
+  EXPECT_EQ(window.lockInStatusBar().verdictText(), QStringLiteral("LOCKED"));
+  EXPECT_EQ(window.lockOnVideo().verdictText(), QStringLiteral("LOCKED"));
+  EXPECT_TRUE(window.lockInStatusBar().text().contains(QStringLiteral("RMS 1.0 px")));
+  Fixate(client, 31, 1, 40, /*lock_lost=*/true);
+  EXPECT_EQ(window.lockInStatusBar().verdictText(), QStringLiteral("LOST"));
+  EXPECT_EQ(window.lockOnVideo().verdictText(), QStringLiteral("LOST"));
+  EXPECT_EQ(window.lock().alerts(), 1);
+}
+
+TEST(MainWindow, LinkDownMarksTheVideoStaleAndGreysTheLiveValues) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  client.setLink(Up());
+  client.publish(MakeVideoFrame(640, 480, 9));
+  Fixate(client, 1, 3, 1);
+  EXPECT_TRUE(window.video().view().staleText().isEmpty());
+  EXPECT_FALSE(window.status().valuesGreyed());
+  client.setLink(Down());
+  EXPECT_TRUE(window.video().view().staleText().startsWith(QStringLiteral("STALE: last frame")));
+  EXPECT_TRUE(window.status().valuesGreyed());
+  EXPECT_TRUE(window.lockInStatusBar().text().contains(QStringLiteral("no link")));
+  EXPECT_TRUE(window.banner().text().startsWith(QStringLiteral("LINK DOWN")));
+  // A new frame is live again.
+  client.setLink(Up());
+  client.publish(MakeVideoFrame(640, 480, 9));
+  EXPECT_TRUE(window.video().view().staleText().isEmpty());
+}
+
+TEST(MainWindow, RestartedAgentIsAnnouncedAndTheOldSessionCleared) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  ShowActive(window);
+  client.setLink(Up());
+  client.publish(MakeSliceReport(9, 8));
+  window.ssp().pickSlice(8);
+  ProcessEvents();
+  ASSERT_EQ(window.ssp().messageText(), QStringLiteral("Fixating on slice 8"));
+  Fixate(client, 1, 30, 2);
+  window.plots().redraw();
+
+  client.restartAgent();
+  kapfix::v1::Telemetry idle = MakeTelemetry(1, 0, 0, 5'000'000);
+  idle.set_mode(kapfix::v1::MODE_IDLE);
+  client.publish(idle);
+  window.plots().redraw();
+
+  EXPECT_TRUE(window.banner().text().startsWith(QStringLiteral("AGENT RESTARTED")));
+  EXPECT_EQ(window.ssp().table().rowCount(), 0);
+  EXPECT_TRUE(window.ssp().messageText().isEmpty());
+  EXPECT_EQ(window.plots().graph(TelemetryPlots::Curve::kDisplacementX)->dataCount(), 1);
+  EXPECT_EQ(window.plots().series().session(), 2);
+  EXPECT_FALSE(window.video().view().hasPicture());
+  // Dismissed, it goes.
+  ASSERT_TRUE(window.banner().dismissButton().isVisible());
+  QTest::mouseClick(&window.banner().dismissButton(), Qt::LeftButton);
+  EXPECT_TRUE(window.banner().text().isEmpty()) << window.banner().text().toStdString();
+}
+
+TEST(MainWindow, FitsALaptopScreenWithTheVideoFirst) {
+  QSettings().clear();
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  window.resize(1366, 768);
+  ShowActive(window);
+  client.publish(MakeVideoFrame(640, 480, 9));
+  ProcessEvents();
+  const QRect all(QPoint(0, 0), QSize(1366, 768));
+  EXPECT_LE(window.width(), 1366);
+  EXPECT_LE(window.height(), 768);
+  const QRect video = InWindow(window.video().view(), window);
+  const QRect status = InWindow(*window.statusBar(), window);
+  auto* tabs = window.findChild<QTabBar*>();
+  ASSERT_NE(tabs, nullptr);
+  const QRect tab_bar = InWindow(*tabs, window);
+  const QRect graphs = InWindow(window.plots(), window);
+  for (const QRect& part : {video, status, tab_bar}) {
+    EXPECT_TRUE(all.contains(part))
+        << part.x() << "," << part.y() << " " << part.width() << "x" << part.height();
+  }
+  EXPECT_TRUE(tabs->isVisible());
+  EXPECT_FALSE(video.intersects(status));
+  EXPECT_FALSE(video.intersects(tab_bar));
+  EXPECT_FALSE(video.intersects(graphs));
+  EXPECT_FALSE(tab_bar.intersects(status));
+  // The video gets the space first: more than half the width, more than a third of the height.
+  EXPECT_GT(video.width(), 1366 / 2);
+  EXPECT_GT(video.height(), 768 / 3);
+  if (const QString dir = qEnvironmentVariable("KAPFIX_SCREENSHOT_DIR"); !dir.isEmpty()) {
+    window.grab().save(dir + QStringLiteral("/station_1366x768.png"));
+  }
 }
 
 TEST(MainWindow, LayoutIsRememberedBetweenRuns) {

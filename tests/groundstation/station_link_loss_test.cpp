@@ -19,7 +19,6 @@
 #include <thread>
 
 #include "groundstation/client/link_resync.hpp"
-#include "groundstation/client/switchable_agent_client.hpp"
 #include "groundstation/client/zmq_agent_client.hpp"
 #include "groundstation/main_window.hpp"
 #include "groundstation/photos/photo_store.hpp"
@@ -57,9 +56,7 @@ int JpegsIn(const std::filesystem::path& folder) {
 // One kapfix-station as main.cpp wires it, with the real station's link options.
 struct Station {
   Station(const kapfix::testing::AgentProcess& agent, const QString& photos_folder)
-      : views(live),
-        recording(new RecordingControls(views, live)),
-        window(MainWindowParts{&views, nullptr, recording}) {
+      : recording(new RecordingControls(live)), window(MainWindowParts{&live, nullptr, recording}) {
     window.photos().setFolder(photos_folder);
     const std::int64_t newest = PhotoStore::newestCaptureTimeUs(photos_folder);
     resync = std::make_unique<LinkResync>(live, newest > 0 ? newest + 1 : kapfix::v1::NowMicros());
@@ -69,8 +66,7 @@ struct Station {
                             QString::fromStdString(agent.stream_endpoint()));
   }
 
-  ZmqAgentClient live;  // default options: the link timeout an operator gets
-  SwitchableAgentClient views;
+  ZmqAgentClient live;           // default options: the link timeout an operator gets
   RecordingControls* recording;  // owned by the window
   MainWindow window;
   std::unique_ptr<LinkResync> resync;

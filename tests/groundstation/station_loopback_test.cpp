@@ -10,7 +10,6 @@
 #include <memory>
 
 #include "groundstation/client/link_resync.hpp"
-#include "groundstation/client/switchable_agent_client.hpp"
 #include "groundstation/client/zmq_agent_client.hpp"
 #include "groundstation/main_window.hpp"
 #include "groundstation/photos/photos_panel.hpp"
@@ -32,9 +31,9 @@ using testing::WaitUntil;
 
 class StationLoopback : public ::testing::Test {
  protected:
-  StationLoopback() : live_(Options()), views_(live_) {
-    recording_ = new RecordingControls(views_, live_);
-    window_ = std::make_unique<MainWindow>(MainWindowParts{&views_, nullptr, recording_});
+  StationLoopback() : live_(Options()) {
+    recording_ = new RecordingControls(live_);
+    window_ = std::make_unique<MainWindow>(MainWindowParts{&live_, nullptr, recording_});
     window_->photos().setFolder(photos_.path());
     live_.connectToEndpoints(QString::fromStdString(agent_.command_endpoint),
                              QString::fromStdString(agent_.stream_endpoint));
@@ -59,7 +58,6 @@ class StationLoopback : public ::testing::Test {
   FakeAgent agent_;
   const QTemporaryDir photos_;
   ZmqAgentClient live_;
-  SwitchableAgentClient views_;
   const LinkResync resync_{live_, kapfix::v1::NowMicros()};
   RecordingControls* recording_;  // owned by the window
   std::unique_ptr<MainWindow> window_;
@@ -114,9 +112,11 @@ TEST_F(StationLoopback, ReplaysARecordingOfTheLiveSession) {
   agent_.control.RefuseWith(kapfix::v1::ERROR_CODE_INTERNAL, "must not be reached in replay");
   ASSERT_TRUE(recording_->startReplay(path));
   recording_->replay().playToEnd();
-  EXPECT_EQ(window_->status().linkText(), QStringLiteral("REPLAY"));
-  EXPECT_EQ(window_->ssp().table().rowCount(), 9);
-  EXPECT_EQ(window_->ssp().recommended(), FakeAgentControl::kRecommendedSlice);
+  ASSERT_NE(window_->replayWindow(), nullptr);  // a window of its own
+  const MainWindow& replay = *window_->replayWindow();
+  EXPECT_EQ(replay.status().linkText(), QStringLiteral("REPLAY"));
+  EXPECT_EQ(replay.ssp().table().rowCount(), 9);
+  EXPECT_EQ(replay.ssp().recommended(), FakeAgentControl::kRecommendedSlice);
   recording_->backToLive();
   EXPECT_TRUE(WaitUntil([&] { return window_->status().linkText() == QStringLiteral("LINK UP"); }));
 }

@@ -3,25 +3,29 @@
 // runs as a child process (tests/integration/agent_process.hpp) flying the kite over aero1.jpg
 // in real time; the SSP panel asks for a free swing of 45 frames so that a test takes seconds.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QSpinBox>
 #include <QTemporaryDir>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 
 #include "groundstation/client/link_resync.hpp"
-#include "groundstation/client/switchable_agent_client.hpp"
 #include "groundstation/client/zmq_agent_client.hpp"
 #include "groundstation/main_window.hpp"
 #include "groundstation/photos/photos_panel.hpp"
 #include "groundstation/recording/recording_controls.hpp"
+#include "groundstation/session/session_banner.hpp"
 #include "groundstation/settings/setting_row.hpp"
 #include "groundstation/settings/settings_panel.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/link_status_bar.hpp"
+#include "groundstation/video/video_panel.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "tests/groundstation/station_test_support.hpp"
 #include "tests/integration/agent_process.hpp"
@@ -32,6 +36,7 @@ namespace {
 using testing::WaitUntil;
 
 constexpr auto kLongWait = std::chrono::milliseconds(20000);
+constexpr qint64 kStaleShownMs = 3500;  // [ms] issue 14: a dead agent is seen within this
 
 // The built-in simulation's choices (BuiltInConfig) with a short SSP swing.
 std::string WriteConfig() {
@@ -44,10 +49,9 @@ std::string WriteConfig() {
 
 class StationWithAgent : public ::testing::Test {
  protected:
-  StationWithAgent()
-      : agent_({"--config", WriteConfig(), "--mode", "idle"}), live_(Options()), views_(live_) {
-    recording_ = new RecordingControls(views_, live_);
-    window_ = std::make_unique<MainWindow>(MainWindowParts{&views_, nullptr, recording_});
+  StationWithAgent() : agent_({"--config", WriteConfig(), "--mode", "idle"}), live_(Options()) {
+    recording_ = new RecordingControls(live_);
+    window_ = std::make_unique<MainWindow>(MainWindowParts{&live_, nullptr, recording_});
     window_->photos().setFolder(photos_.path());
     QObject::connect(&live_, &AgentClient::stateReceived,
                      [this](const kapfix::v1::AgentState& state) { state_ = state; });
@@ -67,7 +71,6 @@ class StationWithAgent : public ::testing::Test {
   kapfix::testing::AgentProcess agent_;
   const QTemporaryDir photos_;
   ZmqAgentClient live_;
-  SwitchableAgentClient views_;
   const LinkResync resync_{live_, kapfix::v1::NowMicros()};
   RecordingControls* recording_;  // owned by the window
   std::unique_ptr<MainWindow> window_;
@@ -157,9 +160,28 @@ TEST_F(StationWithAgent, ReplaysARecordingOfTheLiveSession) {
 
   ASSERT_TRUE(recording_->startReplay(path));
   recording_->replay().playToEnd();
-  EXPECT_EQ(window_->status().linkText(), QStringLiteral("REPLAY"));
-  EXPECT_EQ(window_->ssp().table().rowCount(), 9);
-  EXPECT_EQ(window_->ssp().recommended(), recommended);
+  ASSERT_NE(window_->replayWindow(), nullptr);  // a window of its own
+  const MainWindow& replay = *window_->replayWindow();
+  EXPECT_EQ(replay.status().linkText(), QStringLiteral("REPLAY"));
+  EXPECT_EQ(replay.ssp().table().rowCount(), 9);
+  EXPECT_EQ(replay.ssp().recommended(), recommended);
+}
+
+TEST_F(StationWithAgent, KilledAgentShowsTheStaleVideoWithinThreeAndAHalfSeconds) {
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
+  ASSERT_TRUE(WaitUntil([&] { return window_->video().view().hasPicture(); }, kLongWait));
+  ASSERT_TRUE(window_->video().view().staleText().isEmpty());
+  ASSERT_EQ(::kill(agent_.pid(), SIGKILL), 0);  // kill -9: no goodbye on the link
+  QElapsedTimer since_kill;
+  since_kill.start();
+  ASSERT_TRUE(WaitUntil([&] { return !window_->video().view().staleText().isEmpty(); }, kLongWait));
+  const qint64 shown_ms = since_kill.elapsed();
+  std::printf("stale video shown after %lld ms: %s\n", static_cast<long long>(shown_ms),
+              window_->video().view().staleText().toUtf8().constData());
+  EXPECT_LT(shown_ms, kStaleShownMs);
+  EXPECT_TRUE(window_->video().view().staleText().startsWith(QStringLiteral("STALE")));
+  EXPECT_TRUE(window_->status().valuesGreyed());
+  EXPECT_TRUE(window_->banner().text().startsWith(QStringLiteral("LINK DOWN")));
 }
 
 }  // namespace

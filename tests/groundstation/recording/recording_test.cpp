@@ -1,15 +1,20 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QDir>
 #include <QTemporaryDir>
+#include <QTest>
 
 #include "groundstation/client/fake_agent_client.hpp"
 #include "groundstation/client/switchable_agent_client.hpp"
+#include "groundstation/main_window.hpp"
+#include "groundstation/photos/photos_panel.hpp"
 #include "groundstation/plots/telemetry_plots.hpp"
 #include "groundstation/recording/recording_controls.hpp"
 #include "groundstation/recording/replay_agent_client.hpp"
 #include "groundstation/recording/session_recording.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
+#include "groundstation/status/link_status_bar.hpp"
 #include "tests/groundstation/station_test_support.hpp"
 
 namespace kapfix::station {
@@ -31,9 +36,8 @@ TEST(Recording, RecordThenReplayShowsTheSameTelemetryInThePlots) {
   const QTemporaryDir dir;
   const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
   FakeAgentClient live;
-  SwitchableAgentClient views(live);
-  RecordingControls controls(views, live);
-  TelemetryPlots plots(views);
+  RecordingControls controls(live);
+  TelemetryPlots plots(live);
 
   ASSERT_TRUE(controls.startRecording(path));
   for (int i = 0; i < 20; ++i)
@@ -44,13 +48,67 @@ TEST(Recording, RecordThenReplayShowsTheSameTelemetryInThePlots) {
   const std::vector<double> live_y = Values(plots, Curve::kDisplacementY);
   ASSERT_EQ(live_x.size(), 20U);
 
-  plots.clear();
+  TelemetryPlots replayed(controls.replay());
   ASSERT_TRUE(controls.startReplay(path));
   controls.replay().playToEnd();
+  replayed.redraw();
   plots.redraw();
+  EXPECT_EQ(Values(replayed, Curve::kDisplacementX), live_x);
+  EXPECT_EQ(Values(replayed, Curve::kDisplacementY), live_y);
+  EXPECT_TRUE(controls.replaying());
+  // The live graphs saw nothing of it.
   EXPECT_EQ(Values(plots, Curve::kDisplacementX), live_x);
-  EXPECT_EQ(Values(plots, Curve::kDisplacementY), live_y);
-  EXPECT_TRUE(views.linkState().replay);
+}
+
+TEST(Recording, CtrlRRecordsIntoThePhotosFolderUnderAnAutomaticName) {
+  const QTemporaryDir photos;
+  FakeAgentClient live;
+  auto* controls = new RecordingControls(live);
+  MainWindow window({&live, nullptr, controls});
+  window.photos().setFolder(photos.path());
+  window.show();
+  window.activateWindow();
+  ASSERT_TRUE(QTest::qWaitForWindowActive(&window));
+  QTest::keyClick(&window, Qt::Key_R, Qt::ControlModifier);  // no dialog: it would block here
+  ASSERT_TRUE(controls->recording().recording());
+  live.publish(MakeTelemetry(1, 0, 0, 1'000'000));
+  QTest::keyClick(&window, Qt::Key_R, Qt::ControlModifier);
+  EXPECT_FALSE(controls->recording().recording());
+  const QStringList files =
+      QDir(photos.path()).entryList({QStringLiteral("session-*.kfxrec")}, QDir::Files);
+  ASSERT_EQ(files.size(), 1);
+  EXPECT_EQ(controls->messageText(), QStringLiteral("Recorded ") + files.front());
+}
+
+TEST(Recording, ReplayOpensItsOwnWindowAndLeavesTheLiveViewsAlone) {
+  const QTemporaryDir dir;
+  const QString path = dir.filePath(QStringLiteral("s.kfxrec"));
+  {
+    FakeAgentClient source;
+    SessionRecording recording(source);
+    ASSERT_TRUE(recording.start(path));
+    source.publish(MakeSliceReport(9, 6));
+    for (int i = 0; i < 10; ++i) source.publish(MakeTelemetry(i, 5, 0, 1'000'000 + i * 40'000));
+  }
+  FakeAgentClient live;
+  auto* controls = new RecordingControls(live);
+  MainWindow window({&live, nullptr, controls});
+  ASSERT_TRUE(controls->startReplay(path));
+  controls->replay().playToEnd();
+  ASSERT_NE(window.replayWindow(), nullptr);
+  MainWindow& replay = *window.replayWindow();
+  replay.plots().redraw();
+  window.plots().redraw();
+  EXPECT_EQ(replay.ssp().table().rowCount(), 9);
+  EXPECT_EQ(replay.plots().series().samples().size(), 10U);
+  EXPECT_TRUE(replay.windowTitle().contains(QStringLiteral("REPLAY")));
+  EXPECT_EQ(window.ssp().table().rowCount(), 0);
+  EXPECT_TRUE(window.plots().series().samples().empty());
+  EXPECT_FALSE(window.status().linkText() == QStringLiteral("REPLAY"));
+  // Closing its window ends the replay.
+  replay.close();
+  EXPECT_TRUE(testing::WaitUntil([&] { return window.replayWindow() == nullptr; }));
+  EXPECT_FALSE(controls->replaying());
 }
 
 TEST(Recording, ReplayShowsTheRecordedSspResultsInTheSspPanel) {
