@@ -28,6 +28,7 @@ struct ConfidenceInterval {
 
 // Interval for the mean. For a paired difference pass the per-pair differences. Throws
 // std::invalid_argument for empty input, NaN or invalid options.
-ConfidenceInterval BootstrapMean(const std::vector<double>& values, const BootstrapOptions& options);
+ConfidenceInterval BootstrapMean(const std::vector<double>& values,
+                                 const BootstrapOptions& options);
 
 }  // namespace kapfix

@@ -15,8 +15,7 @@ FriedmanResult Friedman(const std::vector<std::vector<double>>& treatments) {
   }
   const std::size_t blocks = treatments.front().size();
   if (blocks < 2) {
-    throw std::invalid_argument("Friedman: needs at least 2 blocks, got " +
-                                std::to_string(blocks));
+    throw std::invalid_argument("Friedman: needs at least 2 blocks, got " + std::to_string(blocks));
   }
   for (std::size_t j = 0; j < treatments.size(); ++j) {
     if (treatments[j].size() != blocks) {

@@ -21,7 +21,8 @@ double ExactLowerTail(int n, double w) {
     for (int s = total; s >= r; --s) counts[s] += counts[s - r];
   }
   double below = 0.0;
-  for (int s = 0; s <= total && s <= static_cast<int>(std::floor(w + 1e-9)); ++s) below += counts[s];
+  for (int s = 0; s <= total && s <= static_cast<int>(std::floor(w + 1e-9)); ++s)
+    below += counts[s];
   return below / std::pow(2.0, n);
 }
 

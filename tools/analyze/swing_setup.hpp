@@ -25,6 +25,9 @@ struct SwingArgs {
   double jitter_px = 2.0;  // σ of the pendulum's Y jitter [px] (SPEC §3)
   double noise = 3.0;      // σ of the sensor noise [grey levels]
   bool no_subpixel = false;
+  // The thesis's methods as printed: literal hierarchical searches, whole-pixel answers.
+  // Combinations the thesis did not define are refused (MakeStrategy).
+  bool literal = false;
 };
 
 void AddSwingOptions(CLI::App* command, SwingArgs* args);
@@ -39,12 +42,19 @@ void AddSliceOptions(CLI::App* command, SliceArgs* args);
 // Reads the scene photo; throws std::runtime_error naming the file when it cannot.
 cv::Mat LoadScene(const std::string& path);
 
+// The photo scaled so that its shorter side is `side`, then its centre square: the thesis
+// studied 300×300 frames (chapter 3).
+cv::Mat SquareFrame(const cv::Mat& photo, int side);
+
 // Validated settings from the flags; throws std::invalid_argument with the reason.
 SwingOptions MakeSwingOptions(const SwingArgs& args);
 ColorChannel MakeColorChannel(const SwingArgs& args);
 SamplingOptions MakeSampling(const SwingArgs& args);
 SearchOptions MakeSearchOptions(const SwingArgs& args);
 std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name);
+// The strategy as the flags ask: MakeLiteralSearchStrategy with --literal (refusing what the
+// thesis did not define, with the reason), MakeStrategy otherwise.
+std::unique_ptr<SearchStrategy> MakeStrategy(const SwingArgs& args, const std::string& name);
 
 // Renders the swing once, with progress on stderr, and warns there when the scene had to be
 // upscaled to cover the swing.

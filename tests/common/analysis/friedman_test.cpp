@@ -13,9 +13,8 @@ namespace {
 // (A 3.1 > B 3.0), so the rank sums are A 6, B 9, C 15. By the mean-rank form
 // Q = 12n / (k(k + 1)) · Σ(R̄_j − (k + 1)/2)² = 5 · ((1.2 − 2)² + (1.8 − 2)² + (3 − 2)²) = 8.4;
 // with 2 dof the χ² upper tail is exp(−Q/2) = 0.0149956.
-const std::vector<std::vector<double>> kBlocks = {{1.0, 2.0, 1.5, 3.1, 2.2},
-                                                  {2.5, 3.5, 2.9, 3.0, 4.1},
-                                                  {3.3, 4.0, 3.8, 4.4, 4.9}};
+const std::vector<std::vector<double>> kBlocks = {
+    {1.0, 2.0, 1.5, 3.1, 2.2}, {2.5, 3.5, 2.9, 3.0, 4.1}, {3.3, 4.0, 3.8, 4.4, 4.9}};
 
 TEST(FriedmanTest, HandExampleGivesChiSquare) {
   EXPECT_NEAR(Friedman(kBlocks).chi_square, 8.4, 1e-12);
