@@ -94,6 +94,14 @@ nlohmann::json SpearmanJson(const std::map<std::string, SpearmanResult>& all,
 nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   const SliceSelectionOptions options = MakeSelectionOptions(args);
   const auto strategy = MakeStrategy(args.swing, args.strategy);
+  // Before any rendering: the frame must hold the slices and the patch.
+  const cv::Size frame = MakeSwingOptions(args.swing).camera.frame_size;
+  if (frame.height < args.slices || args.swing.patch > std::min(frame.width, frame.height)) {
+    throw std::invalid_argument("a " + std::to_string(frame.width) + "x" +
+                                std::to_string(frame.height) + " frame cannot hold " +
+                                std::to_string(args.slices) + " slices with a " +
+                                std::to_string(args.swing.patch) + "-px patch (see --size)");
+  }
 
   SliceSelection selection;
   double upscale = 1.0;

@@ -4,12 +4,17 @@
 // direction holds here, and why they differ where they do.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <functional>
 #include <iomanip>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "common/analysis/friedman.hpp"
 #include "common/analysis/kruskal_wallis.hpp"
@@ -45,7 +50,31 @@ struct ThesisArgs {
   int ssp_images = 10;      // Table 5.1 had ten
   int surface_frame = 420;  // [px] square frame of the Table 3.2 surfaces
   std::uint32_t seed = 1;
+  int jobs = 2;  // images worked on at once (the machine it is timed on has 2 cores)
 };
+
+// body(0 … count − 1) on up to `jobs` threads; the first exception is rethrown after all end.
+void ForEachIndex(int count, int jobs, const std::function<void(int)>& body) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    for (int i = next++; i < count; i = next++) {
+      try {
+        body(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = count;  // hand out no more work
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 1; t < std::min(jobs, count); ++t) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
 
 // One table or claim, side by side.
 struct Entry {
@@ -270,9 +299,11 @@ Entry Visits(const ThesisArgs& args) {
 std::vector<Entry> SliceSelectionEntries(const ThesisArgs& args, ReportWriter& report) {
   const auto& photos = ThesisStandInPhotos();
   const int count = std::min<int>(args.ssp_images, static_cast<int>(photos.size()));
-  std::vector<SspValidation> runs;
+  std::vector<SspValidation> runs(static_cast<std::size_t>(count));
   ProgressReporter progress("thesis: SSP");
-  for (int i = 0; i < count; ++i) {
+  std::mutex progress_mutex;
+  std::vector<int> done_per_image(static_cast<std::size_t>(count), 0);
+  ForEachIndex(count, args.jobs, [&](int i) {
     SspValidationSetup setup;
     setup.swing.image = args.photos + "/" + photos[static_cast<std::size_t>(i)];
     setup.swing.frames = args.frames;
@@ -285,11 +316,17 @@ std::vector<Entry> SliceSelectionEntries(const ThesisArgs& args, ReportWriter& r
     setup.selection.sampling = MakeSampling(setup.swing);
     setup.selection.search = MakeSearchOptions(setup.swing);
     setup.closed_loop_frames = args.closed_loop_frames;
-    runs.push_back(ValidateSsp(setup, [&](const std::string& stage, int done, int total) {
-      progress.SetStage(photos[static_cast<std::size_t>(i)] + " " + stage);
-      progress.Update(i * total + done, count * total);
-    }));
-  }
+    runs[static_cast<std::size_t>(i)] =
+        ValidateSsp(setup, [&](const std::string& stage, int done, int total) {
+          // Progress in per-mille of each image's current stage, summed over images.
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          done_per_image[static_cast<std::size_t>(i)] = total > 0 ? 1000 * done / total : 0;
+          int sum = 0;
+          for (const int d : done_per_image) sum += d;
+          progress.SetStage(photos[static_cast<std::size_t>(i)] + " " + stage);
+          progress.Update(sum, 1000 * count);
+        });
+  });
 
   Entry table("table_5_1", "Table 5.1: DC of the best vs the worst slice");
   bool ratios_hold = true;
@@ -414,9 +451,15 @@ Entry HierarchicalVsExhaustive(const ThesisArgs& args, ReportWriter& report) {
   for (std::size_t j = 0; j < names.size(); ++j) series[j].label = names[j];
   const cv::Scalar colors[] = {{0, 0, 0},     {200, 80, 20},  {40, 160, 40},
                                {20, 20, 200}, {160, 40, 160}, {20, 160, 200}};
-  for (int i = 0; i < 5; ++i) {
+  // per_image[i][j][r]: image i, strategy j, run r: mean |error| of the run [px].
+  std::vector<std::vector<std::vector<double>>> per_image(5);
+  std::mutex progress_mutex;
+  int steps_done = 0;
+  const int steps = 5 * args.runs * static_cast<int>(names.size());
+  ForEachIndex(5, args.jobs, [&](int i) {
     const std::string photo = ThesisStandInPhotos()[static_cast<std::size_t>(i)];
     std::vector<std::vector<double>> per_run(names.size());
+    const cv::Mat scene = LoadScene(args.photos + "/" + photo);
     for (int r = 0; r < args.runs; ++r) {
       SwingArgs swing;
       swing.image = args.photos + "/" + photo;
@@ -424,22 +467,27 @@ Entry HierarchicalVsExhaustive(const ThesisArgs& args, ReportWriter& report) {
       swing.seed = args.seed + static_cast<std::uint32_t>(r);
       swing.literal = true;
       const SwingRecording recording =
-          RecordSwing(LoadScene(swing.image), MakeSwingOptions(swing), ColorChannel::kGreen);
+          RecordSwing(scene, MakeSwingOptions(swing), ColorChannel::kGreen);
       SwingEvaluationOptions options;
       options.sampling = MakeSampling(swing);
       options.search = MakeSearchOptions(swing);
       options.time_searches = false;
       const cv::Rect patch = SlicePatch(recording.planes.front().size(), 9, 5, 100);
       for (std::size_t j = 0; j < names.size(); ++j) {
-        progress.SetStage(photo + " " + names[j]);
-        progress.Update((i * args.runs + r) * static_cast<int>(names.size()) + static_cast<int>(j),
-                        5 * args.runs * static_cast<int>(names.size()));
         const auto strategy = MakeStrategy(swing, names[j]);
         per_run[j].push_back(
             EvaluateSwing(recording.planes, recording.truth, patch, *strategy, options)
                 .mean_abs_err_px);
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        progress.SetStage(photo + " " + names[j]);
+        progress.Update(++steps_done, steps);
       }
     }
+    per_image[static_cast<std::size_t>(i)] = std::move(per_run);
+  });
+  for (int i = 0; i < 5; ++i) {
+    const std::string photo = ThesisStandInPhotos()[static_cast<std::size_t>(i)];
+    const std::vector<std::vector<double>>& per_run = per_image[static_cast<std::size_t>(i)];
     const KruskalWallisResult kw = KruskalWallis(per_run);
     const FriedmanResult fr = Friedman(per_run);
     same += kw.p_value > 0.05 ? 1 : 0;
@@ -563,6 +611,9 @@ void AddThesisCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
       ->capture_default_str()
       ->check(CLI::Range(32, 4000));
   command->add_option("--seed", args->seed, "First seed")->capture_default_str();
+  command->add_option("--jobs", args->jobs, "Images worked on at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   command->callback(
       [args, run] { *run = [args](ReportWriter& report) { return RunThesis(*args, report); }; });
 }

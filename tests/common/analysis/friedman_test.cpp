@@ -36,10 +36,11 @@ TEST(FriedmanTest, MeanRanksFollowTreatments) {
 }
 
 // Two treatments, a tie in one of three blocks: ranks (1.5, 1.5), (1, 2), (1, 2); R = 3.5, 5.5.
-// Uncorrected 12 / (3·2·3) · (12.25 + 30.25) − 3·3·3 = 1/3; the tie correction
-// 1 − 6 / (3 · 6) = 2/3 makes it 0.5.
+// By the general form for ties, (k − 1) Σ(R_j − n(k + 1)/2)² / (Σ r² − nk(k + 1)²/4):
+// Σ(R_j − 4.5)² = 2, Σ r² = 2 · 2.25 + 2 · 5 = 14.5, nk(k + 1)²/4 = 13.5, so χ² = 2 / 1 = 2
+// (the uncorrected 4/3 over the correction 1 − 6 / (3 · 6) = 2/3 agrees).
 TEST(FriedmanTest, TiesWithinABlockAreCorrected) {
-  EXPECT_NEAR(Friedman({{1, 1, 1}, {1, 2, 2}}).chi_square, 0.5, 1e-12);
+  EXPECT_NEAR(Friedman({{1, 1, 1}, {1, 2, 2}}).chi_square, 2.0, 1e-12);
 }
 
 TEST(FriedmanTest, AllTiedGivesPOne) { EXPECT_EQ(Friedman({{2, 2}, {2, 2}}).p_value, 1.0); }
