@@ -326,6 +326,22 @@ TEST(AnalyzeCliTest, ThesisWritesEntriesWithThesisOursAndHolds) {
   std::filesystem::remove_all(out);
 }
 
+TEST(AnalyzeCliTest, ThesisSlicesEntriesComeFromDistinctSlicesOnTwoSeeds) {
+  const auto json =
+      ParseJson(RunAnalyze("thesis --only table_5_1,best_vs_worst_p,ssp_validation --ssp-images 2 "
+                           "--frames 40 --closed-loop-frames 20 --json --photos " +
+                           std::string(KAPFIX_OPENCV_DATA_DIR)));
+  ASSERT_TRUE(json.is_object());
+  ASSERT_EQ(json["entries"].size(), 3U);
+  for (const auto& [image, row] : json["entries"][0]["ours"].items()) {
+    // Best and worst are different slices, the worst with at least the best's DC.
+    EXPECT_NE(row["best_slice"], row["worst_slice"]) << image;
+    EXPECT_GE(row["worst_dc"].get<int>(), row["best_dc"].get<int>()) << image;
+  }
+  EXPECT_EQ(json["entries"][1]["ours"]["images"], 2);
+  EXPECT_TRUE(json["entries"][2]["holds"].is_boolean());
+}
+
 TEST(AnalyzeCliTest, ThesisRefusesAnUnknownEntry) {
   const Outcome o = RunAnalyze("thesis --only table_9_9");
   EXPECT_EQ(o.exit_code, 1);

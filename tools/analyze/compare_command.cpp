@@ -36,21 +36,12 @@ struct CompareArgs {
   int runs = 5;
 };
 
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 nlohmann::json Interval(const ConfidenceInterval& ci) {
   return {{"estimate", ci.estimate}, {"low", ci.low}, {"high", ci.high}};
 }
 
 nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
-  const std::vector<std::string> names = SplitList(args.strategies);
+  const std::vector<std::string> names = SplitCommaList(args.strategies);
   if (names.size() < 2) throw std::invalid_argument("--strategies: name at least two strategies");
   std::vector<std::unique_ptr<SearchStrategy>> strategies;
   for (const auto& name : names) strategies.push_back(MakeStrategy(args.swing, name));

@@ -37,15 +37,6 @@ struct SspArgs {
   std::string pool;  // further images for the pooled permutation test, comma-separated
 };
 
-std::vector<std::string> SplitImages(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 // Each slice score as a column, in slice order.
 struct ScoreColumns {
   explicit ScoreColumns(const std::vector<SliceScore>& slices) {
@@ -108,7 +99,7 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   std::vector<SspValidation> validations;
   if (args.validate) {
     std::vector<std::string> images = {args.swing.image};
-    for (const std::string& extra : SplitImages(args.pool)) images.push_back(extra);
+    for (const std::string& extra : SplitCommaList(args.pool)) images.push_back(extra);
     ProgressReporter progress("ssp validation");
     for (std::size_t i = 0; i < images.size(); ++i) {
       SspValidationSetup setup;

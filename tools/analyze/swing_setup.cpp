@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "common/search/literal_hierarchical_search.hpp"
@@ -49,6 +50,15 @@ void AddSliceOptions(CLI::App* command, SliceArgs* args) {
   command->add_option("--slices", args->slices, "Number of slices")
       ->capture_default_str()
       ->check(CLI::Range(1, 99));
+}
+
+std::vector<std::string> SplitCommaList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
 }
 
 cv::Mat LoadScene(const std::string& path) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "common/evaluation/swing_recording.hpp"
 #include "common/sampling/sampling_pattern.hpp"
@@ -38,6 +39,9 @@ struct SliceArgs {
   int slices = 9;
 };
 void AddSliceOptions(CLI::App* command, SliceArgs* args);
+
+// "a,b,,c" → {"a", "b", "c"}: the comma-separated lists of --strategies, --pool, --only.
+std::vector<std::string> SplitCommaList(const std::string& text);
 
 // Reads the scene photo; throws std::runtime_error naming the file when it cannot.
 cv::Mat LoadScene(const std::string& path);

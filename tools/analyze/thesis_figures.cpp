@@ -30,10 +30,11 @@ const std::vector<ThesisSuccessRow>& ThesisTable32() {
 
 const std::vector<ThesisSliceRow>& ThesisTable51() {
   static const std::vector<ThesisSliceRow> rows = {
-      {"Flower", 4, 87, 6, 309}, {"City", 4, 82, 9, 548},      {"Garden", 1, 138, 6, 344},
-      {"River", 6, 87, 1, 606},  {"Door", 6, 188, 3, 412},     {"Beach", 6, 75, 9, 562},
-      {"Lake", 3, 74, 9, 526},   {"Building", 4, 129, 1, 312}, {"Street", 3, 88, 9, 243},
-      {"Duck", 5, 76, 9, 436}};
+      {"Flower", "butterfly.jpg", 4, 87, 6, 309}, {"City", "aero1.jpg", 4, 82, 9, 548},
+      {"Garden", "aero3.jpg", 1, 138, 6, 344},    {"River", "fruits.jpg", 6, 87, 1, 606},
+      {"Door", "building.jpg", 6, 188, 3, 412},   {"Beach", "home.jpg", 6, 75, 9, 562},
+      {"Lake", "messi5.jpg", 3, 74, 9, 526},      {"Building", "baboon.jpg", 4, 129, 1, 312},
+      {"Street", "leuvenA.jpg", 3, 88, 9, 243},   {"Duck", "graf1.png", 5, 76, 9, 436}};
   return rows;
 }
 

@@ -27,6 +27,7 @@ const std::vector<ThesisSuccessRow>& ThesisTable32();
 // Table 5.1: SSP's best and worst slice and their DC counts on ten lab images.
 struct ThesisSliceRow {
   std::string image;
+  std::string our_photo;  // the opencv-doc photo standing in for it
   int best_slice = 0;
   int best_dc = 0;
   int worst_slice = 0;
@@ -34,8 +35,7 @@ struct ThesisSliceRow {
 };
 const std::vector<ThesisSliceRow>& ThesisTable51();
 
-// The photos standing in for the thesis's: the five of chapter 4 (Garden, Door, Flower, City,
-// Street) first, then five more for chapter 5's ten.
+// The photos standing in for the five of chapter 4: Garden, Door, Flower, City, Street.
 const std::vector<std::string>& ThesisStandInPhotos();
 
 }  // namespace kapfix::analyze
