@@ -203,6 +203,20 @@ TEST(AnalyzeCliTest, SspValidateMergesSharedPatchesAndGivesSpearmanPValues) {
   EXPECT_NEAR(json["spearman"]["dc"]["p_value"].get<double>(), p, 1e-9);
 }
 
+TEST(AnalyzeCliTest, SspValidatePooledOverImagesGivesAPermutationPValue) {
+  const auto json =
+      ParseJson(RunAnalyze("ssp --image " + Photo("aero1.jpg") + " --pool " + Photo("aero3.jpg") +
+                           " --frames 40 --validate --closed-loop-frames 20 --json"));
+  ASSERT_TRUE(json.is_object());
+  ASSERT_TRUE(json.contains("pooled"));
+  const auto& dc = json["pooled"]["dc"];
+  ASSERT_FALSE(dc.is_null());
+  EXPECT_EQ(dc["images_used"], 2);
+  // (1 + extreme) / (1 + 10,000): never 0, never above 1.
+  EXPECT_GE(dc["p_value"].get<double>(), 1.0 / 10001.0);
+  EXPECT_LE(dc["p_value"].get<double>(), 1.0);
+}
+
 TEST(AnalyzeCliTest, SspRefusesAPatchTooBigForTheFrameNamingTheSizes) {
   const Outcome o = RunAnalyze("ssp --image " + Photo("aero1.jpg") + " --patch 400 --json");
   EXPECT_EQ(o.exit_code, 1);
