@@ -46,6 +46,9 @@ nlohmann::json RunCompare(const CompareArgs& args, ReportWriter& report) {
   std::vector<std::unique_ptr<SearchStrategy>> strategies;
   for (const auto& name : names) strategies.push_back(MakeStrategy(args.swing, name));
   const std::size_t k = strategies.size();
+  // Before any rendering: the patch must fit the frame (throws naming both sizes).
+  SlicePatch(MakeSwingOptions(args.swing).camera.frame_size, args.where.slices, args.where.slice,
+             args.swing.patch);
 
   // per_run[j][r]: strategy j's mean |error| on run r [px]; gross likewise [%].
   std::vector<std::vector<double>> per_run(k);
