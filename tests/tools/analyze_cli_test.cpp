@@ -131,7 +131,8 @@ TEST(AnalyzeCliTest, SspRecommendsOneOfTheSlices) {
   EXPECT_LE(best, 9);
   for (const auto& slice : json["slices"]) {
     EXPECT_TRUE(slice.contains("dc") && slice.contains("fft") && slice.contains("single_shot"));
-  }
+  }  // 300-px frame: slices 1–2 and 8–9 share a patch, and the summary says so.
+  EXPECT_EQ(json["shared_patch_slices"], nlohmann::json::parse("[[1,2],[8,9]]"));
 }
 
 // Independent of the tool's statistics code: average ranks by counting.

@@ -11,6 +11,7 @@
 #include "common/analysis/spearman.hpp"
 #include "common/evaluation/swing_evaluation.hpp"
 #include "common/plot/line_plot.hpp"
+#include "common/selection/slice_geometry.hpp"
 #include "common/selection/slice_selection.hpp"
 #include "tools/analyze/command.hpp"
 #include "tools/analyze/progress_reporter.hpp"
@@ -151,6 +152,14 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
                             {"slices", slices},
                             {"ranking", selection.ranking},
                             {"best_slice", selection.best_slice}};
+  // Slices that share one patch (a frame shorter than slices × patch) are one candidate:
+  // the ranking's centre tie-break then picks the inner one of them. A tall enough frame
+  // (--size 300x900 for 9 slices of 100 px) gives every slice, edges included, its own.
+  nlohmann::json shared = nlohmann::json::array();
+  for (const auto& group : SliceGroups(frame, args.slices, args.swing.patch)) {
+    if (group.size() > 1) shared.push_back(group);
+  }
+  summary["shared_patch_slices"] = shared;
 
   const ScoreColumns columns(selection.slices);
   std::vector<std::string> header = {"slice", "dc", "dc_hysteresis", "fft", "single_shot"};
