@@ -187,4 +187,30 @@ SuccessRateMap ComputeSuccessRateMap(const ErrorSurface& surface, const DescentO
   return map;
 }
 
+ThesisSurfaceSampling ThesisTable32Sampling(SamplingKind kind, std::uint32_t seed) {
+  if (kind == SamplingKind::kAll) {
+    throw std::invalid_argument("ThesisTable32Sampling: Table 3.2 has static and random only");
+  }
+  // The static pattern keeps 10 of every 55 pixels, so the side is near sqrt(14,600 · 5.5).
+  SamplingOptions static_sampling;
+  static_sampling.kind = SamplingKind::kStatic;
+  int side = static_cast<int>(std::floor(std::sqrt(kThesisStaticPixels * 5.5))) - 4;
+  while (static_cast<int>(MakeSamplingPattern({side, side}, static_sampling).size()) <
+         kThesisStaticPixels) {
+    ++side;
+  }
+  ThesisSurfaceSampling result;
+  result.patch_side = side;
+  if (kind == SamplingKind::kStatic) {
+    result.sampling = static_sampling;
+  } else {
+    result.sampling.kind = SamplingKind::kRandom;
+    result.sampling.seed = seed;
+    result.sampling.fraction = static_cast<double>(kThesisRandomPixels) / (side * side);
+  }
+  result.sampled_pixels =
+      static_cast<int>(MakeSamplingPattern({side, side}, result.sampling).size());
+  return result;
+}
+
 }  // namespace kapfix

@@ -41,7 +41,9 @@ AxisCalibration CalibrateAxis(const std::vector<CalibrationSample>& samples) {
   }
 
   std::vector<double> ratios;  // [servo units / px]
+  int zero_moves = 0;
   for (const CalibrationSample& s : samples) {
+    if (s.servo_move == 0.0) ++zero_moves;
     if (s.servo_move != 0.0 && std::abs(s.displacement_px) >= 1.0) {
       ratios.push_back(s.servo_move / s.displacement_px);
     }
@@ -53,6 +55,9 @@ AxisCalibration CalibrateAxis(const std::vector<CalibrationSample>& samples) {
 
   AxisCalibration result;
   result.samples = static_cast<int>(samples.size());
+  std::vector<double> thesis_ratios = ratios;
+  thesis_ratios.insert(thesis_ratios.end(), static_cast<std::size_t>(zero_moves), 0.0);
+  result.units_per_px_thesis = Median(std::move(thesis_ratios));
   result.units_per_px_median = Median(std::move(ratios));
   result.units_per_px_fit = 1.0 / slope;
 

@@ -17,6 +17,11 @@ struct AxisCalibration {
   // |displacement| ≥ 1 px and servo_move ≠ 0 (smaller displacements make the ratio explode).
   // Any constant offset in the displacements (Table 4.1 reads −4 px at a zero move) biases it.
   double units_per_px_median = 0.0;  // [servo units / px]
+  // The thesis's own counting (Table 4.1, "Median(C1…C5) = 1.11"): the same median, but every
+  // zero-move sample enters as a ratio of 0, as the table's C columns print it. On the table's
+  // 105 entries this gives its 1.11 where the rule above gives 1.21; the five zeros pull the
+  // median down three places. Reported for comparison with the thesis, never used to control.
+  double units_per_px_thesis = 0.0;  // [servo units / px]
   // 1 / slope of the robust line displacement = slope · servo_move + offset (Theil–Sen: the
   // median of the pairwise slopes, then the median intercept), which absorbs the offset.
   double units_per_px_fit = 0.0;  // [servo units / px]

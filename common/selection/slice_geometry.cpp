@@ -36,4 +36,22 @@ cv::Rect SlicePatch(cv::Size frame, int slice_count, int slice_index, int patch_
   return {(frame.width - patch_size) / 2, static_cast<int>(top), patch_size, patch_size};
 }
 
+std::vector<std::vector<int>> SliceGroups(cv::Size frame, int slice_count, int patch_size) {
+  std::vector<std::vector<int>> groups;
+  cv::Rect previous;
+  for (int i = 1; i <= slice_count; ++i) {
+    const cv::Rect patch = SlicePatch(frame, slice_count, i, patch_size);
+    // Patches move down monotonically with the index, so equal ones are neighbours.
+    if (!groups.empty() && patch == previous) {
+      groups.back().push_back(i);
+    } else {
+      groups.push_back({i});
+    }
+    previous = patch;
+  }
+  return groups;
+}
+
+int UnclampedSliceHeight(int slice_count, int patch_size) { return slice_count * patch_size; }
+
 }  // namespace kapfix

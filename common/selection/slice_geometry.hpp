@@ -1,6 +1,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <vector>
 
 namespace kapfix {
 
@@ -14,5 +15,16 @@ namespace kapfix {
 // Throws std::invalid_argument for an empty frame, slice_count outside 1 … frame height,
 // slice_index outside 1 … slice_count, or a patch_size outside 1 … min(width, height).
 cv::Rect SlicePatch(cv::Size frame, int slice_count, int slice_index, int patch_size);
+
+// The slices grouped by the patch they get: a group of several slices shares one patch
+// (outer slices clamped into a frame shorter than UnclampedSliceHeight), a group of one has a
+// patch of its own. Groups in slice order, indices ascending. Counting a shared patch once is
+// what keeps a correlation over slices honest (slices 1 and 2 of a 300-px frame are one
+// measurement, not two). Same preconditions as SlicePatch.
+std::vector<std::vector<int>> SliceGroups(cv::Size frame, int slice_count, int patch_size);
+
+// [px] The least frame height at which every slice's patch is centred on its own band, none
+// clamped: slice_count · patch_size (the thesis's long vertical strip cut into 9 parts).
+int UnclampedSliceHeight(int slice_count, int patch_size);
 
 }  // namespace kapfix

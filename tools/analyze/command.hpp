@@ -28,5 +28,6 @@ void AddSwingCommand(CLI::App& app, OutputArgs* output, CommandRun* run);
 void AddSspCommand(CLI::App& app, OutputArgs* output, CommandRun* run);
 void AddPssCommand(CLI::App& app, OutputArgs* output, CommandRun* run);
 void AddCompareCommand(CLI::App& app, OutputArgs* output, CommandRun* run);
+void AddThesisCommand(CLI::App& app, OutputArgs* output, CommandRun* run);
 
 }  // namespace kapfix::analyze

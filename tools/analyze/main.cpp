@@ -39,6 +39,7 @@ int Main(int argc, char** argv) {
   AddSspCommand(app, &output, &run);
   AddPssCommand(app, &output, &run);
   AddCompareCommand(app, &output, &run);
+  AddThesisCommand(app, &output, &run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

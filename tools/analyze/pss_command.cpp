@@ -17,7 +17,7 @@ struct PssArgs {
 };
 
 nlohmann::json RunPss(const PssArgs& args, ReportWriter& report) {
-  const auto strategy = MakeStrategy(args.strategy);
+  const auto strategy = MakeStrategy(args.swing, args.strategy);
   PatchSizeSelectionOptions options;
   options.sizes = args.sizes;
   options.sampling = MakeSampling(args.swing);

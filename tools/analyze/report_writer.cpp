@@ -65,4 +65,8 @@ void ReportWriter::WriteJson(const std::string& name, const nlohmann::json& json
   WriteAtomically(name, json.dump(2) + "\n");
 }
 
+void ReportWriter::WriteText(const std::string& name, const std::string& text) {
+  WriteAtomically(name, text);
+}
+
 }  // namespace kapfix::analyze

@@ -22,6 +22,7 @@ class ReportWriter {
                 const std::vector<std::vector<double>>& columns);
   void WritePng(const std::string& name, const cv::Mat& image);
   void WriteJson(const std::string& name, const nlohmann::json& json);
+  void WriteText(const std::string& name, const std::string& text);  // e.g. a Markdown report
   // Paths written so far, for the summary.
   const std::vector<std::string>& written() const { return written_; }
 

@@ -1,14 +1,21 @@
 // `kapfix-analyze ssp`: the Slice Selection Process (SPEC §2.6) on a simulated free swing, and
-// with --validate, how well each slice score predicts fixation failures on that image.
+// with --validate, how well each slice score predicts closed-loop fixation error: scored on
+// one seed, validated on another, one entry per distinct patch, Spearman with its p-value and,
+// with --pool, a permutation test pooled over images.
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 
+#include "common/analysis/permutation_test.hpp"
 #include "common/analysis/spearman.hpp"
 #include "common/evaluation/swing_evaluation.hpp"
 #include "common/plot/line_plot.hpp"
+#include "common/selection/slice_geometry.hpp"
 #include "common/selection/slice_selection.hpp"
 #include "tools/analyze/command.hpp"
 #include "tools/analyze/progress_reporter.hpp"
+#include "tools/analyze/ssp_validation.hpp"
 #include "tools/analyze/swing_setup.hpp"
 
 namespace kapfix::analyze {
@@ -26,6 +33,9 @@ struct SspArgs {
   int deadline_frames = 0;
   double deadline_seconds = 0.0;
   bool validate = false;
+  std::uint32_t validation_seed = 0;  // 0 = seed + 1000
+  int closed_loop_frames = 300;
+  std::string pool;  // further images for the pooled permutation test, comma-separated
 };
 
 // Each slice score as a column, in slice order.
@@ -46,8 +56,7 @@ struct ScoreColumns {
   std::vector<double> single_shot;
 };
 
-nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
-  const auto strategy = MakeStrategy(args.strategy);
+SliceSelectionOptions MakeSelectionOptions(const SspArgs& args) {
   const auto score = ParseSliceScoreKind(args.score);
   if (!score) {
     throw std::invalid_argument("--score: expected dc, dc-hyst, fft or single-shot, got '" +
@@ -64,12 +73,57 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   options.deadline_seconds = args.deadline_seconds;
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  return options;
+}
 
-  const SwingRecording recording = RecordSwingWithProgress(args.swing);
-  ProgressReporter progress("ssp");
-  const SliceSelection selection =
-      SelectSlice(recording.planes, *strategy, options,
-                  [&](int done, int total) { progress.Update(done, total); });
+nlohmann::json SpearmanJson(const std::map<std::string, SpearmanResult>& all,
+                            const std::string& name) {
+  const auto it = all.find(name);
+  if (it == all.end()) return nullptr;  // a constant sequence: no ranking to correlate
+  return {{"rho", it->second.rho}, {"p_value", it->second.p_value}, {"exact", it->second.exact}};
+}
+
+nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
+  const SliceSelectionOptions options = MakeSelectionOptions(args);
+  const auto strategy = MakeStrategy(args.swing, args.strategy);
+  // Before any rendering: the frame must hold the slices and the patch.
+  const cv::Size frame = MakeSwingOptions(args.swing).camera.frame_size;
+  if (frame.height < args.slices || args.swing.patch > std::min(frame.width, frame.height)) {
+    throw std::invalid_argument("a " + std::to_string(frame.width) + "x" +
+                                std::to_string(frame.height) + " frame cannot hold " +
+                                std::to_string(args.slices) + " slices with a " +
+                                std::to_string(args.swing.patch) + "-px patch (see --size)");
+  }
+
+  SliceSelection selection;
+  double upscale = 1.0;
+  std::vector<SspValidation> validations;
+  if (args.validate) {
+    std::vector<std::string> images = {args.swing.image};
+    for (const std::string& extra : SplitCommaList(args.pool)) images.push_back(extra);
+    ProgressReporter progress("ssp validation");
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      SspValidationSetup setup;
+      setup.swing = args.swing;
+      setup.swing.image = images[i];
+      setup.strategy = args.strategy;
+      setup.selection = options;
+      setup.validation_seed = args.validation_seed;
+      setup.closed_loop_frames = args.closed_loop_frames;
+      validations.push_back(ValidateSsp(setup, [&](const std::string& stage, int done, int total) {
+        progress.SetStage(images[i] + ": " + stage);
+        progress.Update(done, total);
+      }));
+    }
+    selection = validations.front().selection;
+    upscale = validations.front().upscale;
+  } else {
+    const SwingRecording recording = RecordSwingWithProgress(args.swing);
+    upscale = recording.upscale_factor;
+    ProgressReporter progress("ssp");
+    selection = SelectSlice(recording.planes, *strategy, options,
+                            [&](int done, int total) { progress.Update(done, total); });
+  }
 
   nlohmann::json slices = nlohmann::json::array();
   std::vector<PlotSeries> graphs;
@@ -91,56 +145,82 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   }
   nlohmann::json summary = {{"image", args.swing.image},
                             {"strategy", args.strategy},
-                            {"score", ToString(*score)},
+                            {"score", ToString(options.score)},
                             {"frames_used", selection.frames_used},
                             {"deadline_hit", selection.deadline_hit},
-                            {"scene_upscale", recording.upscale_factor},
+                            {"scene_upscale", upscale},
                             {"slices", slices},
                             {"ranking", selection.ranking},
                             {"best_slice", selection.best_slice}};
+  // Slices that share one patch (a frame shorter than slices × patch) are one candidate:
+  // the ranking's centre tie-break then picks the inner one of them. A tall enough frame
+  // (--size 300x900 for 9 slices of 100 px) gives every slice, edges included, its own.
+  nlohmann::json shared = nlohmann::json::array();
+  for (const auto& group : SliceGroups(frame, args.slices, args.swing.patch)) {
+    if (group.size() > 1) shared.push_back(group);
+  }
+  summary["shared_patch_slices"] = shared;
 
   const ScoreColumns columns(selection.slices);
-  std::vector<double> gross;
-  if (args.validate) {
-    // Fixation on each slice's stored reference through the same swing, against the truth.
-    SwingEvaluationOptions evaluation;
-    evaluation.sampling = options.sampling;
-    evaluation.search = options.search;
-    ProgressReporter validate_progress("ssp validation");
-    const int count = static_cast<int>(selection.slices.size());
-    for (int i = 0; i < count; ++i) {
-      const SliceScore& s = selection.slices[i];
-      validate_progress.SetStage("slice " + std::to_string(s.index));
-      const SwingEvaluation e = EvaluateSwing(
-          recording.planes, recording.truth, s.patch, *strategy, evaluation,
-          [&](int done, int total) { validate_progress.Update(i * total + done, count * total); });
-      summary["slices"][i]["gross_fail_pct"] = e.gross_fail_pct;
-      summary["slices"][i]["mean_abs_err_px"] = e.mean_abs_err_px;
-      gross.push_back(e.gross_fail_pct);
-    }
-    // A good score correlates positively with failures for DC and FFT (fewer is better) and
-    // negatively for single-shot (higher is better). Undefined (null) when every slice failed
-    // equally often.
-    auto rho = [&](const std::vector<double>& values) -> nlohmann::json {
-      try {
-        const double r = SpearmanCorrelation(values, gross);
-        return std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr);
-      } catch (const std::invalid_argument&) {
-        return nullptr;  // a constant sequence has no rank correlation
-      }
-    };
-    summary["spearman"] = {{"dc", rho(columns.dc)},
-                           {"dc-hyst", rho(columns.dc_hysteresis)},
-                           {"fft", rho(columns.fft)},
-                           {"single-shot", rho(columns.single_shot)}};
-  }
-
   std::vector<std::string> header = {"slice", "dc", "dc_hysteresis", "fft", "single_shot"};
   std::vector<std::vector<double>> table = {columns.index, columns.dc, columns.dc_hysteresis,
                                             columns.fft, columns.single_shot};
-  if (!gross.empty()) {
-    header.emplace_back("gross_fail_pct");
-    table.push_back(gross);
+  if (!validations.empty()) {
+    const SspValidation& v = validations.front();
+    std::vector<double> rms(selection.slices.size(), std::nan(""));
+    for (std::size_t i = 0; i < v.distinct.size(); ++i) {
+      const int index = v.distinct[i];
+      rms[static_cast<std::size_t>(index - 1)] = v.fixation_rms_px[i];
+      summary["slices"][index - 1]["fixation_rms_px"] = v.fixation_rms_px[i];
+    }
+    nlohmann::json merged = nlohmann::json::array();
+    for (const auto& group : v.groups) {
+      if (group.size() > 1) merged.push_back(group);
+    }
+    summary["validation"] = {
+        {"scored_on_seed", args.swing.seed},
+        {"validated_on_seed",
+         args.validation_seed != 0 ? args.validation_seed : args.swing.seed + 1000},
+        {"closed_loop_frames", args.closed_loop_frames},
+        {"figure", "closed-loop RMS view error per distinct slice [px]"},
+        {"distinct_slices", v.distinct},
+        {"merged_slices", merged},
+        {"best_slice_rms_px",
+         v.fixation_rms_px[static_cast<std::size_t>(
+             std::find(v.distinct.begin(), v.distinct.end(), v.best_slice) - v.distinct.begin())]},
+        {"worst_slice_rms_px", v.fixation_rms_px[static_cast<std::size_t>(
+                                   std::find(v.distinct.begin(), v.distinct.end(), v.worst_slice) -
+                                   v.distinct.begin())]}};
+    // Positive ρ: the score's "worse" slices fixate worse, as a good score should.
+    nlohmann::json spearman;
+    for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
+      spearman[name] = SpearmanJson(v.spearman, name);
+    }
+    summary["spearman"] = spearman;
+    if (validations.size() > 1) {
+      nlohmann::json pooled;
+      for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
+        std::vector<std::vector<double>> scores;
+        std::vector<std::vector<double>> outcomes;
+        for (const SspValidation& each : validations) {
+          scores.push_back(each.predicted_badness.at(name));
+          outcomes.push_back(each.fixation_rms_px);
+        }
+        try {
+          const PooledPermutationResult p =
+              PooledSpearmanPermutationTest(scores, outcomes, 10000, args.swing.seed);
+          pooled[name] = {{"mean_rho", p.mean_rho},
+                          {"p_value", p.p_value},
+                          {"images_used", p.groups_used},
+                          {"permutations", p.permutations}};
+        } catch (const std::invalid_argument&) {
+          pooled[name] = nullptr;
+        }
+      }
+      summary["pooled"] = pooled;
+    }
+    header.emplace_back("fixation_rms_px");
+    table.push_back(rms);
   }
   report.WriteCsv("slices.csv", header, table);
   report.WriteCsv("graphs.csv", graph_header, graph_columns);
@@ -175,7 +255,21 @@ void AddSspCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
                    "Stop after this many seconds (0 = no limit)")
       ->capture_default_str();
   command->add_flag("--validate", args->validate,
-                    "Also fixate every slice and correlate each score with its failure rate");
+                    "Fixate every distinct slice in closed loop on another seed and correlate "
+                    "each score with its fixation error (Spearman, p-value)");
+  command
+      ->add_option("--validate-seed", args->validation_seed,
+                   "Seed of the validation swing (0 = seed + 1000)")
+      ->capture_default_str();
+  command
+      ->add_option("--closed-loop-frames", args->closed_loop_frames,
+                   "Closed-loop frames per slice in --validate")
+      ->capture_default_str()
+      ->check(CLI::Range(20, 100000));
+  command
+      ->add_option("--pool", args->pool,
+                   "Further images (comma-separated) for a pooled permutation test")
+      ->capture_default_str();
   command->callback(
       [args, run] { *run = [args](ReportWriter& report) { return RunSsp(*args, report); }; });
 }

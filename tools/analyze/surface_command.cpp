@@ -25,18 +25,8 @@ struct SurfaceArgs {
   std::string channel = "green";
   std::uint32_t seed = 1;
   int max_steps = 500;
+  bool thesis_pixels = false;
 };
-
-// The photo scaled so that its shorter side is `side`, then its centre square: the thesis
-// studied 300×300 frames.
-cv::Mat SquareFrame(const cv::Mat& photo, int side) {
-  const double scale = static_cast<double>(side) / std::min(photo.cols, photo.rows);
-  cv::Mat scaled;
-  cv::resize(photo, scaled, cv::Size(), scale, scale,
-             scale < 1 ? cv::INTER_AREA : cv::INTER_LINEAR);
-  const cv::Rect centre((scaled.cols - side) / 2, (scaled.rows - side) / 2, side, side);
-  return scaled(centre).clone();
-}
 
 cv::Mat Heatmap(const cv::Mat& values) {
   cv::Mat finite;
@@ -64,13 +54,29 @@ nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
     throw std::invalid_argument("--sampling: " + error);
   }
   sampling.seed = args.seed;
+  int patch_side = args.patch;
+  if (args.thesis_pixels) {
+    if (sampling.kind == SamplingKind::kAll || *layout != PatchLayout::kCentral) {
+      throw std::invalid_argument(
+          "--thesis-pixels: Table 3.2 used static or random sampling of one central patch");
+    }
+    const ThesisSurfaceSampling thesis = ThesisTable32Sampling(sampling.kind, args.seed);
+    sampling = thesis.sampling;
+    patch_side = thesis.patch_side;
+  }
   DescentOptions descent;
   descent.max_steps = args.max_steps;
   if (!descent.IsValid(&error)) throw std::invalid_argument(error);
 
   const cv::Mat frame = SquareFrame(LoadScene(args.image), args.frame);
   const cv::Mat plane = ExtractChannel(frame, *channel);
-  const std::vector<cv::Rect> patches = MakePatchLayout(*layout, frame.size(), args.patch);
+  if (patch_side + 4 > args.frame) {
+    throw std::invalid_argument("the " + std::to_string(patch_side) +
+                                "-px patch leaves no room to shift in a " +
+                                std::to_string(args.frame) + "-px frame (needs at least " +
+                                std::to_string(patch_side + 4) + ")");
+  }
+  const std::vector<cv::Rect> patches = MakePatchLayout(*layout, frame.size(), patch_side);
   int range = args.frame;
   for (const cv::Rect& r : patches) {
     range = std::min({range, r.x, r.y, frame.cols - r.br().x, frame.rows - r.br().y});
@@ -118,6 +124,7 @@ nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
           {"frame", args.frame},
           {"range_px", range},
           {"sampled_pixels", reference.size()},
+          {"patch", patch_side},
           {"starts", map.starts},
           {"success_pct", map.success_pct},
           {"global_minimum", {minimum.x, minimum.y}},
@@ -145,6 +152,8 @@ void AddSurfaceCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
   command->add_option("--seed", args->seed, "Seed of the random sampling")->capture_default_str();
   command->add_option("--max-steps", args->max_steps, "Descent step limit per start")
       ->capture_default_str();
+  command->add_flag("--thesis-pixels", args->thesis_pixels,
+                    "Table 3.2's pixel counts: static 14,600 or random 2,500 on one patch");
   AddOutputOptions(command, output);
   command->callback(
       [args, run] { *run = [args](ReportWriter& report) { return RunSurface(*args, report); }; });

@@ -21,7 +21,7 @@ struct SwingCommandArgs {
 };
 
 nlohmann::json RunSwing(const SwingCommandArgs& args, ReportWriter& report) {
-  const auto strategy = MakeStrategy(args.strategy);
+  const auto strategy = MakeStrategy(args.swing, args.strategy);
   SwingEvaluationOptions options;
   options.sampling = MakeSampling(args.swing);
   options.search = MakeSearchOptions(args.swing);

@@ -1,10 +1,14 @@
 #include "tools/analyze/swing_setup.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <stdexcept>
 
+#include "common/search/literal_hierarchical_search.hpp"
 #include "tools/analyze/progress_reporter.hpp"
 
 namespace kapfix::analyze {
@@ -34,6 +38,9 @@ void AddSwingOptions(CLI::App* command, SwingArgs* args) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
   command->add_flag("--no-subpixel", args->no_subpixel, "Integer shifts only (as the thesis)");
+  command->add_flag("--literal", args->literal,
+                    "The thesis's searches as printed: level-3 answer, whole pixels, visits as "
+                    "the thesis counts them");
 }
 
 void AddSliceOptions(CLI::App* command, SliceArgs* args) {
@@ -45,6 +52,15 @@ void AddSliceOptions(CLI::App* command, SliceArgs* args) {
       ->check(CLI::Range(1, 99));
 }
 
+std::vector<std::string> SplitCommaList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
 cv::Mat LoadScene(const std::string& path) {
   if (!std::filesystem::exists(path))
     throw std::runtime_error("cannot read '" + path + "': no such file");
@@ -52,6 +68,15 @@ cv::Mat LoadScene(const std::string& path) {
   if (scene.empty())
     throw std::runtime_error("cannot read '" + path + "': not an image OpenCV can decode");
   return scene;
+}
+
+cv::Mat SquareFrame(const cv::Mat& photo, int side) {
+  const double scale = static_cast<double>(side) / std::min(photo.cols, photo.rows);
+  cv::Mat scaled;
+  cv::resize(photo, scaled, cv::Size(), scale, scale,
+             scale < 1 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  const cv::Rect centre((scaled.cols - side) / 2, (scaled.rows - side) / 2, side, side);
+  return scaled(centre).clone();
 }
 
 SwingOptions MakeSwingOptions(const SwingArgs& args) {
@@ -98,7 +123,7 @@ SearchOptions MakeSearchOptions(const SwingArgs& args) {
   const auto axis = ParseSearchAxis(args.axis);
   if (!axis) throw std::invalid_argument("--axis: expected x, y or both, got '" + args.axis + "'");
   options.axis = *axis;
-  options.subpixel = !args.no_subpixel;
+  options.subpixel = !args.no_subpixel && !args.literal;
   return options;
 }
 
@@ -106,6 +131,21 @@ std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name) {
   std::string error;
   auto strategy = MakeSearchStrategy(name, &error);
   if (!strategy) throw std::invalid_argument("--strategy: " + error);
+  return strategy;
+}
+
+std::unique_ptr<SearchStrategy> MakeStrategy(const SwingArgs& args, const std::string& name) {
+  if (!args.literal) return MakeStrategy(name);
+  if (MakeColorChannel(args) != ColorChannel::kGreen) {
+    // Not built yet: the thesis's rgb distance is the per-channel SSD; ours is the SSD of the
+    // sum B + G + R, which scores (255, 0, 0) against (0, 255, 0) as equal.
+    throw std::invalid_argument(
+        "--literal: the thesis's rgb distance is the per-channel SSD, which this build does not "
+        "have (--channel rgb is the SSD of B+G+R); use --channel green");
+  }
+  std::string error;
+  auto strategy = MakeLiteralSearchStrategy(name, MakeSearchOptions(args), &error);
+  if (!strategy) throw std::invalid_argument(error);
   return strategy;
 }
 

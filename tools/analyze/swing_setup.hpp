@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "common/evaluation/swing_recording.hpp"
 #include "common/sampling/sampling_pattern.hpp"
@@ -25,6 +26,9 @@ struct SwingArgs {
   double jitter_px = 2.0;  // σ of the pendulum's Y jitter [px] (SPEC §3)
   double noise = 3.0;      // σ of the sensor noise [grey levels]
   bool no_subpixel = false;
+  // The thesis's methods as printed: literal hierarchical searches, whole-pixel answers.
+  // Combinations the thesis did not define are refused (MakeStrategy).
+  bool literal = false;
 };
 
 void AddSwingOptions(CLI::App* command, SwingArgs* args);
@@ -36,8 +40,15 @@ struct SliceArgs {
 };
 void AddSliceOptions(CLI::App* command, SliceArgs* args);
 
+// "a,b,,c" → {"a", "b", "c"}: the comma-separated lists of --strategies, --pool, --only.
+std::vector<std::string> SplitCommaList(const std::string& text);
+
 // Reads the scene photo; throws std::runtime_error naming the file when it cannot.
 cv::Mat LoadScene(const std::string& path);
+
+// The photo scaled so that its shorter side is `side`, then its centre square: the thesis
+// studied 300×300 frames (chapter 3).
+cv::Mat SquareFrame(const cv::Mat& photo, int side);
 
 // Validated settings from the flags; throws std::invalid_argument with the reason.
 SwingOptions MakeSwingOptions(const SwingArgs& args);
@@ -45,6 +56,9 @@ ColorChannel MakeColorChannel(const SwingArgs& args);
 SamplingOptions MakeSampling(const SwingArgs& args);
 SearchOptions MakeSearchOptions(const SwingArgs& args);
 std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name);
+// The strategy as the flags ask: MakeLiteralSearchStrategy with --literal (refusing what the
+// thesis did not define, with the reason), MakeStrategy otherwise.
+std::unique_ptr<SearchStrategy> MakeStrategy(const SwingArgs& args, const std::string& name);
 
 // Renders the swing once, with progress on stderr, and warns there when the scene had to be
 // upscaled to cover the swing.

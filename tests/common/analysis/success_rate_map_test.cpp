@@ -220,3 +220,28 @@ TEST(SuccessRateMapTest, RejectsInvalidOptions) {
 
 }  // namespace
 }  // namespace kapfix
+
+namespace kapfix {
+namespace {
+
+TEST(ThesisTable32SamplingTest, StaticReachesTheThesisCountOnTheSmallestPatch) {
+  const ThesisSurfaceSampling s = ThesisTable32Sampling(SamplingKind::kStatic, 1);
+  EXPECT_GE(s.sampled_pixels, kThesisStaticPixels);
+  // One pixel less on the side would fall short: the patch is the smallest that reaches it.
+  SamplingOptions smaller;
+  smaller.kind = SamplingKind::kStatic;
+  EXPECT_LT(
+      static_cast<int>(MakeSamplingPattern({s.patch_side - 1, s.patch_side - 1}, smaller).size()),
+      kThesisStaticPixels);
+  // Within 1 % of 14,600 (Table 3.1 and 3.2 print it rounded).
+  EXPECT_LT(s.sampled_pixels, kThesisStaticPixels * 1.01);
+}
+
+TEST(ThesisTable32SamplingTest, RandomDrawsExactly2500PixelsOnTheSamePatch) {
+  const ThesisSurfaceSampling r = ThesisTable32Sampling(SamplingKind::kRandom, 3);
+  EXPECT_EQ(r.sampled_pixels, 2500);
+  EXPECT_EQ(r.patch_side, ThesisTable32Sampling(SamplingKind::kStatic, 3).patch_side);
+}
+
+}  // namespace
+}  // namespace kapfix

@@ -123,6 +123,14 @@ TEST(CalibrationTest, RatioMedianSkipsTheZeroMove) {
   EXPECT_DOUBLE_EQ(c.units_per_px_median, 2.0);
 }
 
+TEST(CalibrationTest, ThesisCountingEntersZeroMovesAsZeroRatios) {
+  // Ratios 2, 2, 2 and two zero moves: sorted 0 0 2 2 2, median 2; with three zero moves the
+  // median of 0 0 0 2 2 2 is 1 (the robust rule stays at 2).
+  const AxisCalibration c = CalibrateAxis({{0, 5}, {0, -5}, {0, 1}, {10, 5}, {20, 10}, {40, 20}});
+  EXPECT_DOUBLE_EQ(c.units_per_px_thesis, 1.0);
+  EXPECT_DOUBLE_EQ(c.units_per_px_median, 2.0);
+}
+
 TEST(CalibrationTest, RejectsASingleSample) {
   EXPECT_THROW(CalibrateAxis({{10, 8}}), std::invalid_argument);
 }

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/sampling/patch_layout.hpp"
 
@@ -53,6 +54,30 @@ TEST(SliceGeometryTest, RefusesAPatchThatDoesNotFitTheFrame) {
 
 TEST(SliceGeometryTest, RefusesAnEmptyFrame) {
   EXPECT_NE(ErrorOf({0, 300}, 9, 5, 100).find("empty frame"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kapfix
+
+namespace kapfix {
+namespace {
+
+TEST(SliceGroupsTest, ThreeHundredPixelFrameMergesTheOuterPairs) {
+  // 9 slices of 33 px under a 100-px patch: slices 1 and 2 both clamp to the top, 8 and 9 to
+  // the bottom.
+  const auto groups = SliceGroups({300, 300}, 9, 100);
+  ASSERT_EQ(groups.size(), 7U);
+  EXPECT_EQ(groups.front(), (std::vector<int>{1, 2}));
+  EXPECT_EQ(groups.back(), (std::vector<int>{8, 9}));
+}
+
+TEST(SliceGroupsTest, UnclampedHeightGivesEverySliceItsOwnPatch) {
+  const int height = UnclampedSliceHeight(9, 100);
+  EXPECT_EQ(height, 900);
+  EXPECT_EQ(SliceGroups({300, height}, 9, 100).size(), 9U);
+  // The top slice's patch starts at the top of the frame without being clamped there.
+  EXPECT_EQ(SlicePatch({300, height}, 9, 1, 100).y, 0);
+  EXPECT_EQ(SlicePatch({300, height}, 9, 2, 100).y, 100);
 }
 
 }  // namespace
