@@ -1,5 +1,6 @@
 #include "common/control/predictive_controller.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -51,6 +52,16 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
                         input.confidence >= options_.min_confidence;
   ServoTargets target = current;
   predicting_pan_ = predicting_tilt_ = false;
+  // Frames the camera lost show as a dt of several frame periods (the shortest dt seen):
+  // the swing models get them as missing samples, so their one-sample-per-frame clock holds.
+  if (std::isfinite(input.dt_s) && input.dt_s > 0) {
+    if (frame_period_s_ <= 0 || input.dt_s < frame_period_s_) frame_period_s_ = input.dt_s;
+    const int lost = static_cast<int>(std::lround(input.dt_s / frame_period_s_)) - 1;
+    for (int k = 0; k < std::min(lost, options_.predictor.max_coast_frames + 1); ++k) {
+      pan_.AddMissing();
+      tilt_.AddMissing();
+    }
+  }
   if (!measured) {
     // Bridge a short gap with the forecast; hold once the models give up.
     const bool pan_coasts = pan_.AddMissing();

@@ -61,6 +61,7 @@ class PredictiveController final : public Controller {
   SwingPredictor tilt_;
   bool predicting_pan_ = false;
   bool predicting_tilt_ = false;
+  double frame_period_s_ = 0;  // [s] shortest dt seen: one frame; 0 = none yet
 };
 
 }  // namespace kapfix
