@@ -20,11 +20,20 @@ SimulatedPlatformOptions WorldPlatform(const ClosedLoopOptions& options) {
   return platform;
 }
 
+// [frames] from a frame's capture to the first frame showing the command sent for it, as the
+// loop assumes it: 1 + the servo's latency, its mean when the latency jitters (what a
+// latency calibration would find).
+int ActuationDelay(const SimulatedPlatformOptions& platform) {
+  const SimulatedServoOptions& pan = platform.pan;
+  const int high = std::max(pan.latency_frames, pan.latency_max_frames);
+  return 1 + (pan.latency_frames + high + 1) / 2;
+}
+
 PredictiveOptions EffectivePredictive(const ClosedLoopOptions& options) {
   PredictiveOptions predictive = options.predictive;
   if (predictive.predictor.lead_frames == 0) {
     // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L.
-    predictive.predictor.lead_frames = 1 + options.platform.pan.latency_frames;
+    predictive.predictor.lead_frames = ActuationDelay(WorldPlatform(options));
   }
   return predictive;
 }
@@ -84,14 +93,27 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
                     std::move(controller), calibration);
   // What the controller believes the servos show: the command sent `delay` frames before,
   // clamped as the servo clamps it (the servos' true output angles stay the simulation's).
-  const int delay = 1 + platform_options.pan.latency_frames;
   std::vector<std::pair<int, ServoTargets>> commanded;  // (frame it was sent after, command)
   const ServoTargets initial{platform_options.pan.initial_deg, platform_options.tilt.initial_deg};
-  const auto seen_through_at = [&commanded, &initial, delay](int frame) {
+  const auto sent_before = [&commanded, &initial](int frame, int frames_ago) {
     for (auto it = commanded.rbegin(); it != commanded.rend(); ++it) {
-      if (it->first <= frame - delay) return it->second;
+      if (it->first <= frame - frames_ago) return it->second;
     }
     return initial;
+  };
+  // With a jittering latency the loop believes the expectation: the mean of the commands
+  // that may have taken effect (delays 1 + latency … 1 + latency_max).
+  const int delay_lo = 1 + platform_options.pan.latency_frames;
+  const int delay_hi =
+      1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames);
+  const auto seen_through_at = [&sent_before, delay_lo, delay_hi](int frame) {
+    ServoTargets mean{0, 0};
+    for (int k = delay_lo; k <= delay_hi; ++k) {
+      const ServoTargets t = sent_before(frame, k);
+      mean.pan_deg += t.pan_deg / (delay_hi - delay_lo + 1);
+      mean.tilt_deg += t.tilt_deg / (delay_hi - delay_lo + 1);
+    }
+    return mean;
   };
   // The driver also keeps each command within the servo's rated speed of the previous one,
   // so that the command is what the servo can reach: otherwise the controller's belief

@@ -107,7 +107,7 @@ WorldOptions WorldOptions::Realistic() {
   w.roll_deg = 3;
   w.blur = true;
   w.exposure_steps = true;
-  w.latency_jitter = 3;
+  w.latency_jitter = 2;
   w.frame_drops = 0.02;
   w.calibration_error = 1.3;
   return w;

@@ -34,7 +34,7 @@ struct WorldOptions {
 
   static WorldOptions Nominal() { return {}; }
   // Every disturbance on at field-like levels: broadband gusts, period drift ±15 %, sway,
-  // roll ±3°, motion blur, exposure steps, servo latency 1…3 frames, 2 % frames dropped,
+  // roll ±3°, motion blur, exposure steps, servo latency 1…2 frames, 2 % frames dropped,
   // calibration 1.3 × the true deg/px.
   static WorldOptions Realistic();
   // "nominal" or "realistic"; nothing for another name.
