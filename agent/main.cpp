@@ -223,6 +223,8 @@ int Main(int argc, char** argv) {
       {"silent_gross_pct", std::isfinite(figures.silent_gross_pct)
                                ? nlohmann::json(figures.silent_gross_pct)
                                : nlohmann::json(nullptr)},
+      // Online calibration of deg/px is not built yet (issue 9): no estimate to compare.
+      {"deg_per_px_estimate_ratio", nullptr},
       {"world", agent->simulated() ? world.Describe() : std::string("none")},
       {"scene", agent->simulated() ? config.simulation.scene : std::string()},
       {"motion", agent->simulated() ? std::string(ToString(config.simulation.motion)) : "none"},

@@ -97,5 +97,16 @@ TEST(ClosedLoopWorldOptionsTest, TheSameSeedFliesTheSameRealisticWorld) {
   }
 }
 
+TEST(ClosedLoopAmbiguityTest, TheChessboardIsReportedNotSilentlyHeld) {
+  // left01.jpg: a chessboard, whose neighbouring squares match nearly as well as the right
+  // one. The loop may lose it, but must say so: nearly every frame whose true view error is
+  // gross carries lock_lost.
+  ClosedLoopOptions options;
+  options.frames = 200;
+  const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("left01.jpg"), options);
+  EXPECT_GT(f.lock_lost_pct, 50.0);
+  EXPECT_LT(f.silent_gross_pct, 3.0) << "gross " << f.gross_pct << " %";
+}
+
 }  // namespace
 }  // namespace kapfix
