@@ -23,8 +23,10 @@ cv::Mat RenderHeatMap(const std::string& title, const std::vector<std::string>& 
     throw std::invalid_argument("RenderHeatMap: values must be rows × columns");
   }
   if (!(low > 0 && high > low)) throw std::invalid_argument("RenderHeatMap: need 0 < low < high");
+  int baseline = 0;
+  const int title_w = cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 0.55, 1, &baseline).width;
   cv::Mat canvas(kHeaderH + static_cast<int>(rows) * kCellH + 10,
-                 kRowLabelW + static_cast<int>(cols) * kCellW + 10, CV_8UC3,
+                 std::max(kRowLabelW + static_cast<int>(cols) * kCellW + 10, title_w + 20), CV_8UC3,
                  cv::Scalar(255, 255, 255));
   cv::putText(canvas, title, {10, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
