@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -286,4 +287,11 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace kapfix::bench
 
-int main(int argc, char** argv) { return kapfix::bench::Main(argc, argv); }
+int main(int argc, char** argv) {
+  try {
+    return kapfix::bench::Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kapfix-bench-loop: %s\n", e.what());
+    return 1;
+  }
+}
