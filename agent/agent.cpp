@@ -38,7 +38,12 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   o.boat.seed = config.simulation.seed;
   o.camera.seed = config.simulation.seed;
   o.camera.frame_size = {config.camera.width, config.camera.height};
-  o.px_per_deg = 1.0 / config.active_lens().DegPerPxPan();
+  // The lens profile is what the controller believes; the simulated truth differs from it
+  // by the world's calibration error.
+  o.px_per_deg = config.simulation.world.calibration_error / config.active_lens().DegPerPxPan();
+  const bool default_gusts = config.simulation.world.gusts == WorldOptions::Gusts::kPeriodic;
+  config.simulation.world.ApplyTo(&o);
+  if (default_gusts) o.kite.gusts = config.simulation.gusts;
   o.pan.min_deg = config.servo.pan.limits.min_deg;
   o.pan.max_deg = config.servo.pan.limits.max_deg;
   o.pan.initial_deg = config.servo.pan.limits.park_deg;

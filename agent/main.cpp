@@ -56,6 +56,12 @@ int Main(int argc, char** argv) {
   std::string start_mode = "fixate";
   bool insecure = false;
   bool max_speed = false;
+  // The simulated world's disturbances (issue 9): a preset, then single flags over it.
+  std::string world_preset;
+  std::string world_gusts;
+  std::optional<double> period_drift, roll_deg, frame_drops, calibration_error;
+  std::optional<int> latency_jitter;
+  bool sway = false, blur = false, exposure_steps = false;
   app.add_option("--config", config_path,
                  "configuration file (resources/README.md); default: built-in defaults, which "
                  "fly in simulation");
@@ -100,7 +106,48 @@ int Main(int argc, char** argv) {
   app.add_flag("--preflight", preflight,
                "check config, keys, devices, photo folder and clock; print PASS/FAIL lines; exit "
                "1 if any fails");
+  app.add_option("--world", world_preset, "simulation: nominal|realistic disturbance preset");
+  app.add_option("--gusts", world_gusts, "simulation: periodic|broadband|off");
+  app.add_option("--period-drift", period_drift, "simulation: swing period wanders ±F (0…0.5)");
+  app.add_flag("--sway", sway, "simulation: a slower second sway of the line");
+  app.add_option("--roll-deg", roll_deg, "simulation: image roll up to ±D degrees (0…30)");
+  app.add_flag("--blur", blur, "simulation: motion blur with the view's speed");
+  app.add_flag("--exposure-steps", exposure_steps, "simulation: auto-exposure steps ±20 %");
+  app.add_option("--latency-jitter", latency_jitter, "simulation: servo latency 1…N frames");
+  app.add_option("--frame-drops", frame_drops, "simulation: share of frames lost (0…0.5)");
+  app.add_option("--calibration-error", calibration_error,
+                 "simulation: lens calibration = F × the true deg/px (0.5…2)");
   CLI11_PARSE(app, argc, argv);
+
+  kapfix::WorldOptions world;
+  {
+    const bool any_world = !world_preset.empty() || !world_gusts.empty() || period_drift ||
+                           roll_deg || frame_drops || calibration_error || latency_jitter || sway ||
+                           blur || exposure_steps;
+    if (any_world && !force_sim) {
+      return Fail("the simulated world's flags (--world, --gusts, …) need --sim", 2);
+    }
+    if (!world_preset.empty()) {
+      const auto preset = kapfix::WorldOptions::Preset(world_preset);
+      if (!preset) return Fail("--world must be nominal or realistic, got " + world_preset, 2);
+      world = *preset;
+    }
+    if (!world_gusts.empty()) {
+      const auto gusts = kapfix::ParseWorldGusts(world_gusts);
+      if (!gusts) return Fail("--gusts must be periodic, broadband or off, got " + world_gusts, 2);
+      world.gusts = *gusts;
+    }
+    if (period_drift) world.period_drift = *period_drift;
+    if (roll_deg) world.roll_deg = *roll_deg;
+    if (frame_drops) world.frame_drops = *frame_drops;
+    if (calibration_error) world.calibration_error = *calibration_error;
+    if (latency_jitter) world.latency_jitter = *latency_jitter;
+    world.sway = world.sway || sway;
+    world.blur = world.blur || blur;
+    world.exposure_steps = world.exposure_steps || exposure_steps;
+    std::string error;
+    if (!world.IsValid(&error)) return Fail(error, 2);
+  }
 
   AgentConfig config;
   if (config_path.empty()) {
@@ -113,6 +160,7 @@ int Main(int argc, char** argv) {
   if (!controller.empty()) config.controller.kind = *ParseControllerKind(controller);
   if (seed) config.simulation.seed = *seed;
   if (!scene.empty()) config.simulation.scene = scene;
+  config.simulation.world = world;
   if (config.simulation.scene.empty()) config.simulation.scene = kDefaultScene;
   if (!command_address.empty()) config.link.command_address = command_address;
   if (!stream_address.empty()) config.link.stream_address = stream_address;
@@ -155,9 +203,9 @@ int Main(int argc, char** argv) {
     return Fail(e.what(), 1);
   }
   if (agent->simulated()) {
-    spdlog::info("{}: running in simulation (scene {}, {} motion){}",
+    spdlog::info("{}: running in simulation (scene {}, {} motion, world: {}){}",
                  force_sim ? "--sim" : "no hardware configured", config.simulation.scene,
-                 ToString(config.simulation.motion),
+                 ToString(config.simulation.motion), world.Describe(),
                  options.frames > 0 ? ", " + std::to_string(options.frames) + " frames" : "");
   }
   spdlog::info("{}", agent->Describe());
@@ -199,6 +247,16 @@ int Main(int argc, char** argv) {
       {"loop_latency_p99_ms", figures.loop_latency_p99_ms},
       {"rss_mb", figures.rss_mb},
       {"controller", std::string(ToString(config.controller.kind))},
+      {"p95_error_px", std::isfinite(figures.p95_error_px) ? nlohmann::json(figures.p95_error_px)
+                                                           : nlohmann::json(nullptr)},
+      {"gross_pct", std::isfinite(figures.gross_pct) ? nlohmann::json(figures.gross_pct)
+                                                     : nlohmann::json(nullptr)},
+      {"silent_gross_pct", std::isfinite(figures.silent_gross_pct)
+                               ? nlohmann::json(figures.silent_gross_pct)
+                               : nlohmann::json(nullptr)},
+      // Online calibration of deg/px is not built yet (issue 9): no estimate to compare.
+      {"deg_per_px_estimate_ratio", nullptr},
+      {"world", agent->simulated() ? world.Describe() : std::string("none")},
       {"scene", agent->simulated() ? config.simulation.scene : std::string()},
       {"motion", agent->simulated() ? std::string(ToString(config.simulation.motion)) : "none"},
       {"simulated", agent->simulated()},

@@ -34,6 +34,12 @@ bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
                                                static_cast<double>(next_index_) * 1e6 / fps_)));
   }
   if (next_index_ > 0) platform_->Step();
+  // A frame the camera loses never arrives: the next one does, one frame period later.
+  while (next_index_ > 0 && platform_->FrameDropped(platform_->frame())) {
+    platform_->Step();
+    ++next_index_;
+    ++dropped_;
+  }
   const SimulatedFrame captured = platform_->CaptureFrame();
   const cv::Point2d offset = platform_->ViewOffset();
   frame->image = captured.image;

@@ -41,6 +41,9 @@ class SimFrameSource : public FrameSource {
   // [px] SimulatedPlatform::ViewOffset of frame `index` while it was captured; nullopt when
   // the frame is older than the last 1024 or not captured yet. Thread-safe.
   std::optional<cv::Point2d> ViewOffset(std::uint64_t index) const;
+  // Frames the simulated camera lost (SimulatedPlatformOptions::frame_drop_rate); their
+  // indices are skipped, so the next frame's capture time shows the gap.
+  std::uint64_t dropped() const { return dropped_; }
 
  private:
   std::shared_ptr<SimulatedPlatform> platform_;
@@ -49,6 +52,7 @@ class SimFrameSource : public FrameSource {
   std::chrono::steady_clock::time_point start_;
   bool open_ = false;
   std::uint64_t next_index_ = 0;
+  std::uint64_t dropped_ = 0;
   mutable std::mutex truth_mutex_;
   std::deque<std::pair<std::uint64_t, cv::Point2d>> truth_;
 };

@@ -18,10 +18,10 @@ std::string_view ToString(MotionKind kind) {
   return "?";
 }
 
-bool SimulationConfig::IsValid(std::string* /*error*/) const {
-  // Every value of every field is meaningful; whether the scene file can be read is checked
-  // where it is loaded, with the file's name in the message.
-  return true;
+bool SimulationConfig::IsValid(std::string* error) const {
+  // Whether the scene file can be read is checked where it is loaded, with the file's name
+  // in the message.
+  return world.IsValid(error);
 }
 
 }  // namespace kapfix::agent

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "common/sim/world_options.hpp"
+
 namespace kapfix::agent {
 
 enum class MotionKind {
@@ -22,6 +24,9 @@ struct SimulationConfig {
   MotionKind motion = MotionKind::kKite;
   std::uint32_t seed = 1;  // every random part of the simulation derives from it
   bool gusts = true;       // kite only: random gust impulses
+  // The field's disturbances (kapfix-agent --sim --world …, issue 9); nominal by default.
+  // Its gusts override `gusts` when it is not the nominal periodic model.
+  WorldOptions world;
 
   bool IsValid(std::string* error) const;
 };

@@ -277,6 +277,19 @@ FrameOutcome ModeRunner::Fixate(const CapturedFrame& frame, const ServoTargets& 
                                 double dt_s) {
   FrameOutcome outcome;
   outcome.step = loop_->Process(frame.image, current, dt_s);
+  // The operator must hear of a lock the agent does not trust (issue 9), once per change;
+  // telemetry carries it on every frame as lock_lost.
+  if (outcome.step.lock_lost != lock_lost_) {
+    lock_lost_ = outcome.step.lock_lost;
+    if (lock_lost_) {
+      spdlog::warn(
+          "frame {}: match not trusted (confidence {:.2f}, ambiguous or poor): re-acquiring the "
+          "stored reference; the servos follow the forecast swing, then hold",
+          frame.index, outcome.step.match.confidence);
+    } else {
+      spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
+    }
+  }
   outcome.mode = mode_;
   outcome.slice = slice_;
   outcome.slice_count = settings_.search.slices;

@@ -93,6 +93,7 @@ class ModeRunner : public FrameProcessor {
   // the run replaces strategy_, not this one.
   std::shared_ptr<const SearchStrategy> run_strategy_;
   std::unique_ptr<FixationLoop> loop_;
+  bool lock_lost_ = false;             // the last fixating frame's lock state, to log its changes
   cv::Mat reference_frame_;            // fixate / follow: the frame the reference was taken from
   std::uint64_t reference_index_ = 0;  // its index
   ServoTargets hold_{};                // [deg] where the servos stay during a free swing

@@ -46,6 +46,7 @@ kapfix::v1::SliceReport MakeSliceReport(const SliceSelection& selection,
     out->set_dc_hysteresis(static_cast<std::uint32_t>(slice.dc_hysteresis));
     out->set_fft(slice.fft);
     out->set_single_shot(static_cast<float>(slice.single_shot));
+    out->set_ambiguous(slice.ambiguous);
     for (const double sample : slice.graph.samples) out->add_graph_px(static_cast<float>(sample));
     out->set_rank(rank[static_cast<std::size_t>(slice.index)]);
   }

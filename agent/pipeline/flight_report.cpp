@@ -18,6 +18,9 @@
 namespace kapfix::agent {
 namespace {}  // namespace
 
+// [px] a true view error beyond this is gross (issue 9).
+constexpr double kGrossErrorPx = 10;
+
 FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
                                    const PipelineStats& stats) {
   FlightFigures f;
@@ -31,9 +34,9 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
       truth[r.index] = {*r.view_offset_x_px, *r.view_offset_y_px};
     }
   }
-  std::vector<double> latency;
+  std::vector<double> latency, errors;
   double sum_sq = 0;
-  std::size_t with_truth = 0, fixating = 0, lost = 0;
+  std::size_t with_truth = 0, fixating = 0, lost = 0, gross = 0, silent_gross = 0;
   for (std::size_t i = 1; i < records.size(); ++i) {
     const TelemetryRecord& r = records[i];
     latency.push_back(r.loop_latency_ms);
@@ -46,7 +49,20 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
     const cv::Point2d error = now->second - held->second;
     sum_sq += error.dot(error);
     ++with_truth;
+    errors.push_back(std::hypot(error.x, error.y));
+    if (errors.back() > kGrossErrorPx) {
+      ++gross;
+      silent_gross += r.lock_lost ? 0 : 1;
+    }
   }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto share = [with_truth, nan](std::size_t count) {
+    return with_truth > 0 ? 100.0 * static_cast<double>(count) / static_cast<double>(with_truth)
+                          : nan;
+  };
+  f.p95_error_px = errors.empty() ? nan : Percentile(errors, 95.0);
+  f.gross_pct = share(gross);
+  f.silent_gross_pct = share(silent_gross);
   f.rms_error_px = with_truth > 0 ? std::sqrt(sum_sq / static_cast<double>(with_truth))
                                   : std::numeric_limits<double>::quiet_NaN();
   f.lock_lost_pct =

@@ -15,8 +15,14 @@ namespace kapfix::agent {
 struct FlightFigures {
   double rms_error_px = 0;   // [px] RMS of |view offset| (simulation truth); NaN without truth
   double lock_lost_pct = 0;  // [%] fixating frames reported lock lost
-  std::uint64_t frames = 0;  // control steps, reference frame included
-  double fps = 0;            // frames processed per wall-clock second
+  double p95_error_px = 0;   // [px] 95th percentile of the true view error; NaN without truth
+  // [%] fixating frames with a true view error > 10 px, and of those the ones with lock_lost
+  // false (the loop held a wrong view without saying so), as shares of all fixating frames
+  // with truth; NaN without truth.
+  double gross_pct = 0;
+  double silent_gross_pct = 0;
+  std::uint64_t frames = 0;        // control steps, reference frame included
+  double fps = 0;                  // frames processed per wall-clock second
   double loop_latency_p50_ms = 0;  // [ms]
   double loop_latency_p99_ms = 0;  // [ms]
   double rss_mb = 0;               // [MB] peak resident set (VmHWM), 0 when unknown

@@ -48,6 +48,9 @@ class PredictiveController final : public Controller {
 
   // Whether each axis acted on its forecast (not the P fallback) at the last Update.
   bool predicting_pan() const { return predicting_pan_; }
+  // [0, 1] share of the forecast in each axis's target (1 forecast, 0 plain P).
+  double pan_forecast_weight() const { return pan_trust_.weight; }
+  double tilt_forecast_weight() const { return tilt_trust_.weight; }
   bool predicting_tilt() const { return predicting_tilt_; }
   const SwingPredictor& pan_predictor() const { return pan_; }
   const SwingPredictor& tilt_predictor() const { return tilt_; }
@@ -61,6 +64,17 @@ class PredictiveController final : public Controller {
   SwingPredictor tilt_;
   bool predicting_pan_ = false;
   bool predicting_tilt_ = false;
+  double frame_period_s_ = 0;  // [s] shortest dt seen: one frame; 0 = none yet
+  // Per axis: how far the forecast is trusted against P (1: forecast, 0: P), graded on the
+  // residual the camera shows; see Update.
+  struct AxisTrust {
+    double weight = 1.0;
+    double residual_sq = 0;  // [px²] EMA of the squared residual while the forecast leads
+    int graded = 0;          // frames graded since the last hand-over
+    int hold = 0;            // [frames] left before the forecast may come back
+  };
+  AxisTrust pan_trust_;
+  AxisTrust tilt_trust_;
 };
 
 }  // namespace kapfix

@@ -12,11 +12,28 @@
 namespace kapfix {
 namespace {
 
+constexpr double kGrossErrorPx = 10;  // [px] a view error beyond this is gross (issue 9)
+
+SimulatedPlatformOptions WorldPlatform(const ClosedLoopOptions& options) {
+  SimulatedPlatformOptions platform = options.platform;
+  options.world.ApplyTo(&platform);
+  return platform;
+}
+
+// [frames] from a frame's capture to the first frame showing the command sent for it, as the
+// loop assumes it: 1 + the servo's latency, its mean when the latency jitters (what a
+// latency calibration would find).
+int ActuationDelay(const SimulatedPlatformOptions& platform) {
+  const SimulatedServoOptions& pan = platform.pan;
+  const int high = std::max(pan.latency_frames, pan.latency_max_frames);
+  return 1 + (pan.latency_frames + high + 1) / 2;
+}
+
 PredictiveOptions EffectivePredictive(const ClosedLoopOptions& options) {
   PredictiveOptions predictive = options.predictive;
   if (predictive.predictor.lead_frames == 0) {
     // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L.
-    predictive.predictor.lead_frames = 1 + options.platform.pan.latency_frames;
+    predictive.predictor.lead_frames = ActuationDelay(WorldPlatform(options));
   }
   return predictive;
 }
@@ -28,7 +45,10 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     if (error) *error = message;
     return false;
   };
-  if (!platform.IsValid(error) || !fixation.IsValid(error) || !gains.IsValid(error)) return false;
+  if (!world.IsValid(error)) return false;
+  if (!WorldPlatform(*this).IsValid(error) || !fixation.IsValid(error) || !gains.IsValid(error)) {
+    return false;
+  }
   if (!EffectivePredictive(*this).IsValid(error)) return false;
   std::string reason;
   if (!MakeSearchStrategy(strategy, &reason)) return fail(reason);
@@ -61,49 +81,128 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
                                      const std::function<void(int, int)>& progress) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument("EvaluateClosedLoop: " + error);
-  SimulatedPlatform platform(scene_bgr, options.platform);
-  const double deg_per_px = options.calibration_scale / options.platform.px_per_deg;
+  const SimulatedPlatformOptions platform_options = WorldPlatform(options);
+  SimulatedPlatform platform(scene_bgr, platform_options);
+  const double deg_per_px =
+      options.calibration_scale * options.world.calibration_error / platform_options.px_per_deg;
   const LensCalibration calibration{deg_per_px, deg_per_px};
   std::unique_ptr<Controller> controller = MakeController(
       options.controller, options.gains, calibration, EffectivePredictive(options), &error);
   const auto* predictive = dynamic_cast<const PredictiveController*>(controller.get());
   FixationLoop loop(options.fixation, MakeSearchStrategy(options.strategy, &error),
                     std::move(controller), calibration);
+  // What the controller believes the servos show: the command sent `delay` frames before,
+  // clamped as the servo clamps it (the servos' true output angles stay the simulation's).
+  std::vector<std::pair<int, ServoTargets>> commanded;  // (frame it was sent after, command)
+  const ServoTargets initial{platform_options.pan.initial_deg, platform_options.tilt.initial_deg};
+  const auto sent_before = [&commanded, &initial](int frame, int frames_ago) {
+    for (auto it = commanded.rbegin(); it != commanded.rend(); ++it) {
+      if (it->first <= frame - frames_ago) return it->second;
+    }
+    return initial;
+  };
+  // With a jittering latency the loop believes the expectation: the mean of the commands
+  // that may have taken effect (delays 1 + latency … 1 + latency_max).
+  const int delay_lo = 1 + platform_options.pan.latency_frames;
+  const int delay_hi =
+      1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames);
+  const auto seen_through_at = [&sent_before, delay_lo, delay_hi](int frame) {
+    ServoTargets mean{0, 0};
+    for (int k = delay_lo; k <= delay_hi; ++k) {
+      const ServoTargets t = sent_before(frame, k);
+      mean.pan_deg += t.pan_deg / (delay_hi - delay_lo + 1);
+      mean.tilt_deg += t.tilt_deg / (delay_hi - delay_lo + 1);
+    }
+    return mean;
+  };
+  // The driver also keeps each command within the servo's rated speed of the previous one,
+  // so that the command is what the servo can reach: otherwise the controller's belief
+  // (the command) and the servo's true angle part whenever the rate limit bites, and a loop
+  // acting on that belief feeds its own error back.
+  const auto limit = [](double target, double previous, double low, double high, double step) {
+    return std::clamp(std::clamp(target, previous - step, previous + step), low, high);
+  };
+  const auto command = [&](int frame, const ServoTargets& targets) {
+    const ServoTargets previous = commanded.empty() ? initial : commanded.back().second;
+    const int frames_since = commanded.empty() ? 1 : frame - commanded.back().first;
+    const ServoTargets clamped{
+        limit(targets.pan_deg, previous.pan_deg, platform_options.pan.min_deg,
+              platform_options.pan.max_deg,
+              platform_options.pan.rate_limit_deg_per_frame * frames_since),
+        limit(targets.tilt_deg, previous.tilt_deg, platform_options.tilt.min_deg,
+              platform_options.tilt.max_deg,
+              platform_options.tilt.rate_limit_deg_per_frame * frames_since)};
+    platform.CommandPan(clamped.pan_deg);
+    platform.CommandTilt(clamped.tilt_deg);
+    commanded.emplace_back(frame, clamped);
+    if (commanded.size() > 64) commanded.erase(commanded.begin());
+  };
   // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
   // controller's history starts there, as the agent's does when it fixates mid-stream.
   {
     const SimulatedFrame reference = platform.CaptureFrame();
     loop.SetReference(reference.image);
-    const FixationLoop::Step step = loop.Process(
-        reference.image, {reference.pan_deg, reference.tilt_deg}, options.frame_period_s);
-    platform.CommandPan(step.targets.pan_deg);
-    platform.CommandTilt(step.targets.tilt_deg);
+    const FixationLoop::Step step =
+        loop.Process(reference.image, seen_through_at(0), options.frame_period_s);
+    command(0, step.targets);
   }
 
   ClosedLoopFigures figures;
   figures.frames = options.frames;
   std::vector<double> loop_us;
   loop_us.reserve(static_cast<std::size_t>(options.frames));
-  double sum_x = 0, sum_y = 0, sum_open = 0, total_us = 0;
-  int lost = 0, predicting = 0;
+  std::vector<double> errors;
+  errors.reserve(static_cast<std::size_t>(options.frames));
+  double sum_x = 0, sum_y = 0, sum_open = 0, total_us = 0, sum_miss = 0, sum_confidence = 0;
+  int measured = 0;
+  int lost = 0, predicting = 0, gross = 0, silent_gross = 0, dropped = 0, missed = 0;
+  bool lock_lost = false;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (int i = 0; i < options.frames; ++i) {
     platform.Step();
     const SimulatedFrame frame = platform.CaptureFrame();
-    const ServoTargets seen_through{frame.pan_deg, frame.tilt_deg};
-    const FixationLoop::Step step = loop.Process(frame.image, seen_through, options.frame_period_s);
-    platform.CommandPan(step.targets.pan_deg);
-    platform.CommandTilt(step.targets.tilt_deg);
-
-    const cv::Point2d offset = platform.ViewOffset();  // of the frame just processed
+    const cv::Point2d offset = platform.ViewOffset();  // of the frame just captured
     const cv::Point2d open = platform.OpenLoopOffset();
     figures.view_offsets.push_back(offset);
-    figures.angles.push_back(seen_through);
-    figures.measured_x.push_back(step.match.found ? step.match.displacement.x : nan);
-    figures.measured_y.push_back(step.match.found ? step.match.displacement.y : nan);
+    figures.angles.push_back({frame.pan_deg, frame.tilt_deg});
     sum_x += offset.x * offset.x;
     sum_y += offset.y * offset.y;
     sum_open += open.dot(open);
+    const double view_error = std::hypot(offset.x, offset.y);
+    errors.push_back(view_error);
+    if (platform.FrameDropped(frame.frame)) {
+      // Lost by the camera: nothing is measured or commanded; the lock state stands.
+      ++dropped;
+      ++missed;
+      figures.measured_x.push_back(nan);
+      figures.measured_y.push_back(nan);
+      lost += lock_lost ? 1 : 0;
+      if (view_error > kGrossErrorPx) {
+        ++gross;
+        silent_gross += lock_lost ? 0 : 1;
+      }
+      if (progress) progress(i + 1, options.frames);
+      continue;
+    }
+    const FixationLoop::Step step = loop.Process(frame.image, seen_through_at(frame.frame),
+                                                 options.frame_period_s * (1 + missed));
+    missed = 0;
+    command(frame.frame, step.targets);
+    lock_lost = step.lock_lost;
+    if (view_error > kGrossErrorPx) {
+      ++gross;
+      silent_gross += step.lock_lost ? 0 : 1;
+    }
+
+    if (step.match.found) {
+      // A perfect match measures −ViewOffset (the content moves against the view).
+      const cv::Point2d miss = step.match.displacement + offset;
+      sum_miss += miss.dot(miss);
+      sum_confidence += step.match.confidence;
+      ++measured;
+    }
+    figures.measured_x.push_back(step.match.found ? step.match.displacement.x : nan);
+    figures.measured_y.push_back(step.match.found ? step.match.displacement.y : nan);
     lost += step.lock_lost ? 1 : 0;
     if (predictive && (predictive->predicting_pan() || predictive->predicting_tilt())) {
       ++predicting;
@@ -118,6 +217,12 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.rms_error_px = std::sqrt((sum_x + sum_y) / n);
   figures.open_loop_rms_px = std::sqrt(sum_open / n);
   figures.lock_lost_pct = 100.0 * lost / n;
+  figures.p95_error_px = Percentile(errors, 95.0);
+  figures.measurement_rms_px = measured > 0 ? std::sqrt(sum_miss / measured) : nan;
+  figures.confidence_loss = measured > 0 ? 1.0 - sum_confidence / measured : nan;
+  figures.gross_pct = 100.0 * gross / n;
+  figures.silent_gross_pct = 100.0 * silent_gross / n;
+  figures.dropped_pct = 100.0 * dropped / n;
   figures.predicting_pct = 100.0 * predicting / n;
   figures.fps = total_us > 0 ? n / (total_us * 1e-6) : 0.0;
   figures.loop_latency_p50_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 50.0) / 1000.0;

@@ -9,6 +9,7 @@
 #include "common/control/predictive_controller.hpp"
 #include "common/fixation/fixation_loop.hpp"
 #include "common/sim/simulated_platform.hpp"
+#include "common/sim/world_options.hpp"
 
 namespace kapfix {
 
@@ -42,9 +43,12 @@ struct ClosedLoopOptions {
     o.predictor.lead_frames = 0;
     return o;
   }();
-  // The controller's deg per px is calibration_scale / px_per_deg: 1 is an exact
-  // calibration, 1.1 one that over-corrects by 10 %.
+  // The controller's deg per px is calibration_scale · world.calibration_error / px_per_deg:
+  // 1 is an exact calibration, 1.1 one that over-corrects by 10 %.
   double calibration_scale = 1.0;
+  // The field's disturbances (issue 9), applied to `platform` by EvaluateClosedLoop; the
+  // default is the nominal world (the platform options as they are).
+  WorldOptions world;
   int frames = 600;              // frames processed after the reference frame
   double frame_period_s = 0.04;  // [s] dt handed to the controller (25 frames/s)
 
@@ -63,6 +67,18 @@ struct ClosedLoopFigures {
   double rms_error_y_px = 0;    // [px] its y component alone
   double open_loop_rms_px = 0;  // [px] the same for the motion alone (servos off), for scale
   double lock_lost_pct = 0;     // [%] frames reported lock lost
+  double p95_error_px = 0;      // [px] 95th percentile of |ViewOffset| over the frames
+  // [%] frames whose true view error |ViewOffset| > 10 px (gross), and of those the ones the
+  // loop did not report (lock_lost false), both as a share of all frames.
+  double gross_pct = 0;
+  double silent_gross_pct = 0;
+  double dropped_pct = 0;  // [%] frames the camera lost (world.frame_drops)
+  // [px] RMS of the measured displacement's miss (measured − true) over the frames with a
+  // match: what image disturbances (roll, blur, exposure) cost the matcher.
+  double measurement_rms_px = 0;
+  // [1] 1 − the mean match confidence over the frames with a match: how much less sure of
+  // itself the matcher is (motion blur smears without moving the minimum).
+  double confidence_loss = 0;
   int frames = 0;
   double fps = 0;  // frames per wall-clock second of Process()
   double loop_latency_p50_ms = 0, loop_latency_p99_ms = 0;  // [ms] of Process()
@@ -74,9 +90,12 @@ struct ClosedLoopFigures {
 };
 
 // Runs the loop: frame 0 becomes the reference; then per frame Step (servos act),
-// CaptureFrame, FixationLoop::Process with the angles the frame was seen through, and the
-// targets are commanded. Throws std::invalid_argument for an empty scene or options that are
-// not IsValid.
+// CaptureFrame, FixationLoop::Process, and the targets are commanded. The controller is
+// never told the servos' true angles, which a hobby servo cannot report: it gets the command
+// that should have taken effect by the frame's capture (the one sent 1 + the servo's nominal
+// latency frames earlier), as the agent's pipeline does. A frame the camera drops is not
+// processed (no command; the next frame's dt is two frame periods) but its view error counts.
+// Throws std::invalid_argument for an empty scene or options that are not IsValid.
 ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopOptions& options,
                                      const std::function<void(int, int)>& progress = nullptr);
 

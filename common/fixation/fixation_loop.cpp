@@ -1,5 +1,6 @@
 #include "common/fixation/fixation_loop.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -8,6 +9,12 @@
 #include "common/selection/slice_geometry.hpp"
 
 namespace kapfix {
+namespace {
+
+// [px] kept between a widened search window and the frame's edge (the pyramid's blur).
+constexpr int kReacquireMarginPx = 8;
+
+}  // namespace
 
 bool FixationOptions::IsValid(std::string* error) const {
   auto fail = [error](const std::string& message) {
@@ -23,6 +30,13 @@ bool FixationOptions::IsValid(std::string* error) const {
   if (!(lock_lost_confidence >= 0.0 && lock_lost_confidence <= 1.0)) {
     return fail("lock-lost confidence must be in [0, 1], got " +
                 std::to_string(lock_lost_confidence));
+  }
+  if (!std::isfinite(reacquire_range_factor) || reacquire_range_factor < 1) {
+    return fail("re-acquire range factor must be ≥ 1, got " +
+                std::to_string(reacquire_range_factor));
+  }
+  if (lock_regain_frames < 1) {
+    return fail("lock-regain frames must be ≥ 1, got " + std::to_string(lock_regain_frames));
   }
   if (lock_lost_frames < 1) {
     return fail("lock-lost frames must be ≥ 1, got " + std::to_string(lock_lost_frames));
@@ -71,6 +85,8 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
   origin_ = options_.search.origin;
   follow_sum_ = {0, 0};
   untrusted_frames_ = 0;
+  trusted_frames_ = 0;
+  reacquiring_ = false;
   controller_->Reset();
 }
 
@@ -92,12 +108,30 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   const cv::Mat plane = Plane(frame_bgr);
   SearchOptions search = options_.search;
   if (options_.track_origin) search.origin = origin_;
+  const bool stored = options_.reference == FixationOptions::Reference::kStored;
+  if (reacquiring_ && stored) {
+    // Back to where the reference was, over a wider window that stays inside the frame.
+    search.origin = options_.search.origin;
+    const int fit_x = std::min(patch_.x, plane.cols - patch_.br().x) - kReacquireMarginPx;
+    const int fit_y = std::min(patch_.y, plane.rows - patch_.br().y) - kReacquireMarginPx;
+    const int fit = search.axis == SearchAxis::kX   ? fit_x
+                    : search.axis == SearchAxis::kY ? fit_y
+                                                    : std::min(fit_x, fit_y);
+    const int wide = static_cast<int>(search.range * options_.reacquire_range_factor);
+    search.range = std::max(search.range, std::min(wide, fit));
+    step.reacquiring = true;
+  }
   step.match = strategy_->Search(*reference_, plane, search);
 
-  const bool trusted = step.match.found && step.match.confidence >= options_.lock_lost_confidence;
-  untrusted_frames_ = trusted ? 0 : untrusted_frames_ + 1;
-  step.lock_lost = untrusted_frames_ >= options_.lock_lost_frames;
-  if (trusted) origin_ = step.match.shift;
+  const bool confident = step.match.found && step.match.confidence >= options_.lock_lost_confidence;
+  untrusted_frames_ = confident ? 0 : untrusted_frames_ + 1;
+  trusted_frames_ = confident ? trusted_frames_ + 1 : 0;
+  if (untrusted_frames_ >= options_.lock_lost_frames) reacquiring_ = true;
+  if (reacquiring_ && trusted_frames_ >= options_.lock_regain_frames) reacquiring_ = false;
+  step.lock_lost = reacquiring_;
+  const bool trusted = confident && !reacquiring_;
+  step.trusted = trusted;
+  if (confident) origin_ = step.match.shift;
 
   cv::Point2d displacement = trusted ? step.match.displacement : cv::Point2d(0, 0);
   // Only the searched axes are measured: the other one's value is the search's by-product

@@ -26,8 +26,16 @@ struct FixationOptions {
   // A frame whose match confidence is below this (or that found no match) is not trusted:
   // the controller gets it as not found. After lock_lost_frames such frames in a row the
   // lock is reported lost (the agent then re-runs SSP, SPEC §2.6).
-  double lock_lost_confidence = 0.05;
+  // MatchConfidence sees a repetitive texture's rival (issue 9): below this the match is
+  // ambiguous or poor and must not steer the servos.
+  double lock_lost_confidence = 0.2;
   int lock_lost_frames = 5;
+  // Once the lock is lost the loop re-acquires the stored reference: each search is centred
+  // on search.origin (where the reference was) with its range widened by this factor, as far
+  // as the frame allows, and the lock is back only after lock_regain_frames trusted frames
+  // in a row (a single lucky frame on a repetitive texture must not snap to a neighbour).
+  double reacquire_range_factor = 2.0;
+  int lock_regain_frames = 3;
   enum class Reference {
     kStored,    // fixate: every frame is compared with the reference stored by SetReference
     kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
@@ -47,7 +55,10 @@ struct FixationOptions {
 };
 
 // One frame of fixation (SPEC §2.8, §4 "fixate"/"follow"), pure: measure the displacement of
-// the reference patch in the frame, then ask the controller for servo targets. No threads,
+// the reference patch in the frame, then ask the controller for servo targets. A match that
+// is not trusted never steers: the controller gets it as missing (the predictive one follows
+// its forecast for a few frames, then the servos hold), and after lock_lost_frames of them
+// the lock is reported lost and the search re-acquires the stored reference. No threads,
 // no I/O; not thread-safe (one control thread owns it). The caller sends the targets to the
 // servos, whose driver enforces the hard limits.
 class FixationLoop {
@@ -67,7 +78,10 @@ class FixationLoop {
     SearchResult match;    // displacement in the stored-reference convention (follow: step)
     ServoTargets targets;  // [deg] what to command now
     bool lock_lost = false;
-    double loop_us = 0;  // [µs] wall time of this Process call
+    // The match steered the servos this frame (confident, and the lock not being re-acquired).
+    bool trusted = false;
+    bool reacquiring = false;  // the search was widened around the stored reference
+    double loop_us = 0;        // [µs] wall time of this Process call
   };
   // `current`: the servo angles `frame_bgr` was captured through; `dt_s`: time since the
   // previous frame. Without a reference the servos hold and the lock is reported lost.
@@ -89,6 +103,8 @@ class FixationLoop {
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
   int untrusted_frames_ = 0;
+  int trusted_frames_ = 0;    // confident frames in a row
+  bool reacquiring_ = false;  // the lock was lost and is not yet regained
 };
 
 }  // namespace kapfix

@@ -25,7 +25,17 @@ double Confidence(const Curve& curve, int exclusion) {
   }
   if (rival == std::numeric_limits<std::int64_t>::max()) rival = highest;
   if (rival <= 0) return 0.0;
-  return std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0, 1.0);
+  const double ratio =
+      std::clamp(1.0 - static_cast<double>(best->second) / static_cast<double>(rival), 0.0, 1.0);
+  // Sensor noise, blur and brightness add about the same to every distance, which pulls the
+  // ratio towards 0 everywhere but barely hides a repetitive texture's rival. The rival's
+  // rise above the best as a share of the curve's whole rise does not see that floor: a
+  // rival one texture period away that is nearly as good scores near 0 whatever the
+  // absolute distances.
+  const double rise = static_cast<double>(highest - best->second);
+  const double contrast =
+      rise > 0 ? std::clamp(static_cast<double>(rival - best->second) / rise, 0.0, 1.0) : 0.0;
+  return std::min(ratio, contrast);
 }
 
 }  // namespace

@@ -17,6 +17,9 @@ namespace {
 constexpr int kRivalExclusionPx = 2;
 // [px] basin half-width at which the width factor reaches 1 − 1/e.
 constexpr double kBasinScalePx = 8.0;
+// A rival valley below this share of the highest distance is ambiguous (as
+// FixationOptions::lock_lost_confidence's default for MatchConfidence).
+constexpr double kAmbiguousContrast = 0.2;
 
 double Median(std::vector<std::int64_t> values) {
   const std::size_t mid = values.size() / 2;
@@ -76,6 +79,14 @@ SingleShotScore SingleShotScoreFromCurve(const ErrorCurve& curve) {
   result.distinctness = median > 0.0 ? std::clamp(Rival(curve) / median, 0.0, 1.0) : 0.0;
   result.basin_width_px = 0.5 * (RiseLength(curve, zero, -1) + RiseLength(curve, zero, +1));
   result.score = result.distinctness * (1.0 - std::exp(-result.basin_width_px / kBasinScalePx));
+  std::int64_t highest = 0;
+  for (std::size_t i = 0; i < curve.shifts.size(); ++i) {
+    if (std::abs(curve.shifts[i]) > kRivalExclusionPx)
+      highest = std::max(highest, curve.distances[i]);
+  }
+  // The self-match is at distance 0, so the rival's rise is the rival itself.
+  result.ambiguous =
+      highest > 0 && Rival(curve) < kAmbiguousContrast * static_cast<double>(highest);
   return result;
 }
 

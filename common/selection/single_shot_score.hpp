@@ -25,6 +25,10 @@ struct SingleShotScore {
   double score = 0.0;
   double distinctness = 0.0;    // [0, 1]
   double basin_width_px = 0.0;  // [px]
+  // A rival valley rises less than 0.2 of the curve's highest distance above the self-match
+  // (MatchConfidence's criterion, at the fixation loop's trust threshold): a repetitive
+  // texture whose neighbouring period matches nearly as well. Marked, not scored away.
+  bool ambiguous = false;
 };
 
 // The score of a self-comparison curve (shift 0 must be on it, else all zero; all zero too when

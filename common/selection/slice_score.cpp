@@ -58,6 +58,7 @@ std::vector<int> RankSlices(const std::vector<SliceScore>& scores, SliceScoreKin
   order.reserve(scores.size());
   for (const SliceScore& s : scores) order.push_back(&s);
   std::stable_sort(order.begin(), order.end(), [&](const SliceScore* a, const SliceScore* b) {
+    if (a->ambiguous != b->ambiguous) return b->ambiguous;
     const double ka = Key(*a, kind);
     const double kb = Key(*b, kind);
     if (ka != kb) return ka < kb;

@@ -30,12 +30,17 @@ struct SliceScore {
   int dc_hysteresis = 0;     // direction changes with the options' hysteresis
   double fft = 0.0;          // [px] FftScore of the graph (not divided by 1000)
   double single_shot = 0.0;  // SingleShotScore::score on the first frame
+  // SingleShotScore::ambiguous on the first frame: a rival valley nearly as good as the
+  // self-match (a repetitive texture); such a slice can be locked one period off.
+  bool ambiguous = false;
 };
 
-// Slice indices, best first (SPEC §2.6): by `kind` (dc, dc-hyst and fft ascending,
-// single-shot descending); ties by FFT score ascending; then by closeness to the frame's
-// centre, i.e. to slice (slice_count + 1) / 2; then the upper slice, so that the order is
-// total. slice_count = 0 takes the largest index among `scores` (right for a full set).
+// Slice indices, best first (SPEC §2.6): unambiguous slices before ambiguous ones (issue 9:
+// SSP steers away from a patch a neighbouring texture period could steal); then by `kind` (dc,
+// dc-hyst and fft ascending, single-shot descending); ties by FFT score ascending; then by
+// closeness to the frame's centre, i.e. to slice (slice_count + 1) / 2; then the upper slice, so
+// that the order is total. slice_count = 0 takes the largest index among `scores` (right for a full
+// set).
 std::vector<int> RankSlices(const std::vector<SliceScore>& scores, SliceScoreKind kind,
                             int slice_count = 0);
 

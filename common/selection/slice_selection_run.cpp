@@ -36,9 +36,10 @@ SliceSelectionRun::SliceSelectionRun(const cv::Mat& first_plane, const SearchStr
     }
     if (source_[i] == i) {
       samples_[i] = SampleSet({slice.patch}, options_.sampling);
-      slice.single_shot =
-          ComputeSingleShotScore(first_plane, slice.patch, options_.sampling, options_.search)
-              .score;
+      const SingleShotScore single_shot =
+          ComputeSingleShotScore(first_plane, slice.patch, options_.sampling, options_.search);
+      slice.single_shot = single_shot.score;
+      slice.ambiguous = single_shot.ambiguous;
     }
   }
   previous_ = first_plane.clone();
@@ -79,6 +80,7 @@ SliceSelection SliceSelectionRun::Result(bool deadline_hit) const {
       slice.dc_hysteresis = twin.dc_hysteresis;
       slice.fft = twin.fft;
       slice.single_shot = twin.single_shot;
+      slice.ambiguous = twin.ambiguous;
       continue;
     }
     slice.dc = CountDirectionChanges(slice.graph.samples);

@@ -11,8 +11,16 @@
 namespace kapfix {
 namespace {
 
-constexpr std::uint64_t kNoiseStream = 0x6e6f697365;  // "noise"
-constexpr int kMaxFrameSide = 20000;                  // [px] sanity bound on frame_size
+constexpr std::uint64_t kNoiseStream = 0x6e6f697365;   // "noise"
+constexpr std::uint64_t kRollStream = 0x726f6c6c;      // "roll"
+constexpr std::uint64_t kExposureStream = 0x6578706f;  // "expo"
+constexpr double kRollPeriodA = 97;                    // [frames] the roll's slow component
+constexpr double kRollPeriodB = 31;                    // [frames] and its faster one
+constexpr int kExposureStepFrames = 125;               // [frames] between exposure steps
+// [1/px per rad of roll] keystone: the image's scale changes by this × roll × distance from
+// the centre along y (0.8 % at 150 px for 3° of roll).
+constexpr double kKeystonePerRad = 1e-3;
+constexpr int kMaxFrameSide = 20000;  // [px] sanity bound on frame_size
 
 bool Finite(double v) { return std::isfinite(v); }
 
@@ -61,6 +69,16 @@ bool SceneCameraOptions::IsValid(std::string* error) const {
   if (!Finite(blur_sigma) || blur_sigma < 0) {
     return fail("blur σ must be ≥ 0 px, got " + std::to_string(blur_sigma));
   }
+  if (!(roll_max_deg >= 0 && roll_max_deg <= 30)) {
+    return fail("roll must be 0…30 deg, got " + std::to_string(roll_max_deg));
+  }
+  if (!(exposure_step_max >= 0 && exposure_step_max <= 0.5)) {
+    return fail("exposure step must be 0…0.5, got " + std::to_string(exposure_step_max));
+  }
+  if (!(motion_blur_exposure >= 0 && motion_blur_exposure <= 1)) {
+    return fail("motion blur exposure must be 0…1 frame, got " +
+                std::to_string(motion_blur_exposure));
+  }
   if (!(max_excursion_px >= 0 && max_excursion_px <= kMaxFrameSide)) {
     return fail("max excursion must be 0…" + std::to_string(kMaxFrameSide) + " px, got " +
                 std::to_string(max_excursion_px));
@@ -95,7 +113,25 @@ double SceneCamera::BrightnessGain(int frame) const {
                    std::sin(2.0 * std::numbers::pi * frame / options_.brightness_period_frames);
 }
 
-cv::Mat SceneCamera::Capture(int frame, cv::Point2d line_of_sight) const {
+double SceneCamera::RollDeg(int frame) const {
+  if (options_.roll_max_deg == 0.0) return 0.0;
+  const double two_pi = 2.0 * std::numbers::pi;
+  const double a = two_pi * SimUniform(options_.seed, kRollStream, 0);
+  const double b = two_pi * SimUniform(options_.seed, kRollStream, 1);
+  // Starts level, so the reference frame is not rolled; |roll| ≤ roll_max_deg.
+  const double wave = 0.7 * (std::sin(two_pi * frame / kRollPeriodA + a) - std::sin(a)) +
+                      0.3 * (std::sin(two_pi * frame / kRollPeriodB + b) - std::sin(b));
+  return std::clamp(0.5 * wave, -1.0, 1.0) * options_.roll_max_deg;
+}
+
+double SceneCamera::ExposureGain(int frame) const {
+  if (options_.exposure_step_max == 0.0 || frame < kExposureStepFrames) return 1.0;
+  const int step = frame / kExposureStepFrames;
+  const double u = SimUniform(options_.seed, kExposureStream, step);
+  return 1.0 + options_.exposure_step_max * (2.0 * u - 1.0);
+}
+
+cv::Mat SceneCamera::Capture(int frame, cv::Point2d line_of_sight, cv::Point2d motion_px) const {
   if (!Finite(line_of_sight.x) || !Finite(line_of_sight.y)) {
     throw std::invalid_argument("SceneCamera::Capture: line of sight must be finite");
   }
@@ -108,16 +144,56 @@ cv::Mat SceneCamera::Capture(int frame, cv::Point2d line_of_sight) const {
   // clamping there changes nothing and keeps warpAffine's fixed-point maths from overflowing.
   ox = std::clamp(ox, -size.width - 2.0, scene_.cols + 2.0);
   oy = std::clamp(oy, -size.height - 2.0, scene_.rows + 2.0);
-  const cv::Matx23d to_scene(1, 0, ox, 0, 1, oy);
   cv::Mat window;
-  cv::warpAffine(scene_, window, to_scene, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                 cv::BORDER_REPLICATE);
+  const double roll_rad = RollDeg(frame) * std::numbers::pi / 180.0;
+  if (roll_rad == 0.0) {
+    const cv::Matx23d to_scene(1, 0, ox, 0, 1, oy);
+    cv::warpAffine(scene_, window, to_scene, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                   cv::BORDER_REPLICATE);
+  } else {
+    // Frame pixel → centred → keystone → rotated → scene: the view turns about its centre.
+    const double cx = (size.width - 1) / 2.0, cy = (size.height - 1) / 2.0;
+    const cv::Matx33d centre(1, 0, -cx, 0, 1, -cy, 0, 0, 1);
+    const cv::Matx33d keystone(1, 0, 0, 0, 1, 0, 0, kKeystonePerRad * roll_rad, 1);
+    const double c = std::cos(roll_rad), s = std::sin(roll_rad);
+    const cv::Matx33d rotate(c, -s, 0, s, c, 0, 0, 0, 1);
+    const cv::Matx33d place(1, 0, ox + cx, 0, 1, oy + cy, 0, 0, 1);
+    const cv::Matx33d to_scene = place * rotate * keystone * centre;
+    cv::warpPerspective(scene_, window, to_scene, size, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                        cv::BORDER_REPLICATE);
+  }
 
-  const double gain = BrightnessGain(frame);
-  if (gain == 1.0 && options_.blur_sigma == 0.0 && options_.noise_sigma == 0.0) return window;
+  const double gain = BrightnessGain(frame) * ExposureGain(frame);
+  const cv::Point2d smear = motion_px * options_.motion_blur_exposure;
+  const bool blur_motion = std::hypot(smear.x, smear.y) >= 1.0;
+  if (gain == 1.0 && options_.blur_sigma == 0.0 && options_.noise_sigma == 0.0 && !blur_motion) {
+    return window;
+  }
   // Float between the steps, so that gain, blur and noise round to 8 bit once.
   cv::Mat work;
   window.convertTo(work, CV_32FC3, gain);
+  if (blur_motion) {
+    // A line kernel along the motion: the content moved by −smear in the frame while the
+    // shutter was open (the sign does not matter for a symmetric smear).
+    const double length = std::hypot(smear.x, smear.y);
+    const int half = static_cast<int>(std::ceil(length / 2.0));
+    cv::Mat kernel = cv::Mat::zeros(2 * half + 1, 2 * half + 1, CV_32F);
+    const int samples = 4 * (2 * half + 1);
+    for (int i = 0; i < samples; ++i) {
+      const double f = static_cast<double>(i) / (samples - 1) - 0.5;  // −½ … ½
+      const double x = half + f * smear.x, y = half + f * smear.y;
+      const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+      const double fx = x - x0, fy = y - y0;
+      for (int dy = 0; dy <= 1; ++dy) {
+        for (int dx = 0; dx <= 1; ++dx) {
+          const int kx = std::min(x0 + dx, 2 * half), ky = std::min(y0 + dy, 2 * half);
+          kernel.at<float>(ky, kx) += static_cast<float>((dx ? fx : 1 - fx) * (dy ? fy : 1 - fy));
+        }
+      }
+    }
+    kernel /= cv::sum(kernel)[0];
+    cv::filter2D(work, work, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  }
   if (options_.blur_sigma > 0.0) {
     cv::GaussianBlur(work, work, cv::Size(0, 0), options_.blur_sigma, options_.blur_sigma,
                      cv::BORDER_REPLICATE);

@@ -3,8 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/sim/sim_random.hpp"
+
 namespace kapfix {
 namespace {
+
+constexpr std::uint64_t kDropStream = 0x64726f70;  // "drop"
 
 const SimulatedPlatformOptions& Validated(const SimulatedPlatformOptions& options) {
   std::string error;
@@ -29,6 +33,10 @@ bool SimulatedPlatformOptions::IsValid(std::string* error) const {
     if (error) *error = "px per degree must be > 0, got " + std::to_string(px_per_deg);
     return false;
   }
+  if (!(frame_drop_rate >= 0 && frame_drop_rate <= 0.5)) {
+    if (error) *error = "frame drop rate must be 0…0.5, got " + std::to_string(frame_drop_rate);
+    return false;
+  }
   return true;
 }
 
@@ -39,6 +47,12 @@ SimulatedPlatform::SimulatedPlatform(const cv::Mat& scene_bgr, SimulatedPlatform
       pan_(options_.pan),
       tilt_(options_.tilt) {
   initial_line_of_sight_ = LineOfSightLocked();
+  previous_line_of_sight_ = initial_line_of_sight_;
+}
+
+bool SimulatedPlatform::FrameDropped(int frame) const {
+  return options_.frame_drop_rate > 0 && frame > 0 &&
+         SimUniform(options_.camera.seed, kDropStream, frame) < options_.frame_drop_rate;
 }
 
 cv::Point2d SimulatedPlatform::LineOfSightLocked() const {
@@ -48,17 +62,18 @@ cv::Point2d SimulatedPlatform::LineOfSightLocked() const {
 
 SimulatedFrame SimulatedPlatform::CaptureFrame() const {
   SimulatedFrame out;
-  cv::Point2d line_of_sight;
+  cv::Point2d line_of_sight, motion;
   {
     std::lock_guard lock(mutex_);
     out.frame = frame_;
     out.pan_deg = pan_.angle();
     out.tilt_deg = tilt_.angle();
     line_of_sight = LineOfSightLocked();
+    motion = line_of_sight - previous_line_of_sight_;
   }
   // SceneCamera::Capture is const and stateless: render without holding the lock, so that
   // commands from the control thread never wait for a frame to be drawn.
-  out.image = camera_.Capture(out.frame, line_of_sight);
+  out.image = camera_.Capture(out.frame, line_of_sight, motion);
   return out;
 }
 
@@ -76,6 +91,7 @@ void SimulatedPlatform::CommandTilt(double deg) {
 
 void SimulatedPlatform::Step() {
   std::lock_guard lock(mutex_);
+  previous_line_of_sight_ = LineOfSightLocked();
   pan_.Step();
   tilt_.Step();
   ++frame_;

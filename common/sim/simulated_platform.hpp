@@ -22,6 +22,9 @@ struct SimulatedPlatformOptions {
   SimulatedServoOptions pan;   // turns the line of sight along x
   SimulatedServoOptions tilt;  // turns the line of sight along y
   double px_per_deg = 10.0;    // [px/deg] lens: scene pixels the view moves per degree of servo
+  // [1] share of frames the camera loses (0…0.5), decided per frame from the camera's seed;
+  // see FrameDropped.
+  double frame_drop_rate = 0;
 
   bool IsValid(std::string* error) const;
 };
@@ -71,6 +74,10 @@ class SimulatedPlatform {
   // frame t + 1 + L.
   void Step();
 
+  // Whether the camera loses frame `frame` (the platform still moves; nobody sees it).
+  // A pure function of (camera seed, frame).
+  bool FrameDropped(int frame) const;
+
   int frame() const;
   // [px] current line of sight (motion plus servos), scene pixels.
   cv::Point2d LineOfSight() const;
@@ -99,6 +106,7 @@ class SimulatedPlatform {
   SimulatedServo pan_;
   SimulatedServo tilt_;
   int frame_ = 0;
+  cv::Point2d previous_line_of_sight_;  // [px] at the previous frame, for motion blur
 };
 
 }  // namespace kapfix

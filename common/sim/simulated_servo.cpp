@@ -4,10 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/sim/sim_random.hpp"
+
 namespace kapfix {
 namespace {
 
 constexpr int kMaxLatencyFrames = 1000;
+constexpr std::uint64_t kLatencyStream = 0x6c6174;  // "lat"
 
 }  // namespace
 
@@ -34,6 +37,12 @@ bool SimulatedServoOptions::IsValid(std::string* error) const {
     return fail("servo latency must be 0…" + std::to_string(kMaxLatencyFrames) + " frames, got " +
                 std::to_string(latency_frames));
   }
+  if (latency_max_frames != 0 &&
+      (latency_max_frames < latency_frames || latency_max_frames > kMaxLatencyFrames)) {
+    return fail("servo latency jitter must reach latency (" + std::to_string(latency_frames) +
+                ")…" + std::to_string(kMaxLatencyFrames) + " frames, got " +
+                std::to_string(latency_max_frames));
+  }
   if (!(initial_deg >= min_deg && initial_deg <= max_deg)) {
     return fail("servo initial angle " + std::to_string(initial_deg) +
                 " deg is outside its limits");
@@ -54,13 +63,30 @@ SimulatedServo::SimulatedServo(SimulatedServoOptions options)
 void SimulatedServo::Command(double target_deg) {
   if (std::isnan(target_deg)) return;
   commanded_ = std::clamp(target_deg, options_.min_deg, options_.max_deg);
-  pending_.push_back({steps_ + options_.latency_frames, commanded_});
+  pending_.push_back({steps_ + Latency(), commanded_, issued_++});
+}
+
+int SimulatedServo::Latency() const {
+  const int low = options_.latency_frames, high = options_.latency_max_frames;
+  if (high <= low) return low;
+  const double u = SimUniform(options_.seed, kLatencyStream, issued_);
+  return low + std::min(high - low, static_cast<int>(u * (high - low + 1)));
 }
 
 double SimulatedServo::Step() {
-  while (!pending_.empty() && pending_.front().active_at_step <= steps_) {
-    target_ = pending_.front().target_deg;
-    pending_.pop_front();
+  // The newest command that has arrived wins; older ones still in flight are obsolete.
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    if (it->active_at_step <= steps_) {
+      if (it->issued > active_issued_) {
+        target_ = it->target_deg;
+        active_issued_ = it->issued;
+      }
+      it = pending_.erase(it);
+    } else if (it->issued < active_issued_) {
+      it = pending_.erase(it);
+    } else {
+      ++it;
+    }
   }
   ++steps_;
 

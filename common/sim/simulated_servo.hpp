@@ -14,6 +14,10 @@ struct SimulatedServoOptions {
   double backlash_deg = 0.1;            // [deg] total play between shaft and output
   int latency_frames = 1;               // [frames] Steps before a command starts to act
   double initial_deg = 0;               // [deg] shaft and output at start, within the limits
+  // [frames] latency jitter: when > latency_frames, each command's latency is drawn
+  // uniformly from latency_frames…latency_max_frames (seeded); 0 = fixed latency.
+  int latency_max_frames = 0;
+  std::uint32_t seed = 1;  // of the latency jitter
 
   bool IsValid(std::string* error) const;
 };
@@ -23,7 +27,9 @@ struct SimulatedServoOptions {
 // Command(target) is clamped to [min, max] and queued; it becomes the shaft's target after
 // latency_frames Steps (latency 0: the very next Step moves towards it; latency 1: the next
 // Step does not yet, the one after does). Commands keep their order; a later one replaces
-// the target once its own delay has passed. NaN commands are ignored (the servo keeps its
+// the target once its own delay has passed; with latency jitter a command overtaken by a
+// newer one that became active first is dropped, as a servo only ever follows the newest
+// pulse it has seen. NaN commands are ignored (the servo keeps its
 // current target and commanded()), since a broken controller must not move the camera;
 // ±∞ and absurd values are clamped like any other.
 //
@@ -51,11 +57,15 @@ class SimulatedServo {
   struct Pending {
     std::int64_t active_at_step;  // the Step (0-based) from which it is the target
     double target_deg;
+    std::int64_t issued = 0;  // order of the command
   };
+  int Latency() const;  // [frames] of the next command
 
   SimulatedServoOptions options_;
   std::deque<Pending> pending_;
-  std::int64_t steps_ = 0;  // Steps done
+  std::int64_t steps_ = 0;           // Steps done
+  std::int64_t issued_ = 0;          // commands accepted
+  std::int64_t active_issued_ = -1;  // order of the command that is the target now
   double target_;
   double shaft_;
   double output_;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -52,8 +53,10 @@ TEST(AgentCliTest, SimFlightWritesTheReport) {
   ASSERT_TRUE(file) << "no summary.json";
   const auto json = nlohmann::json::parse(file, nullptr, /*allow_exceptions=*/false);
   ASSERT_TRUE(json.is_object());
-  for (const char* key : {"rms_error_px", "lock_lost_pct", "frames", "fps", "loop_latency_p50_ms",
-                          "loop_latency_p99_ms", "rss_mb", "controller", "scene", "motion"}) {
+  for (const char* key :
+       {"rms_error_px", "lock_lost_pct", "frames", "fps", "loop_latency_p50_ms",
+        "loop_latency_p99_ms", "rss_mb", "controller", "scene", "motion", "p95_error_px",
+        "gross_pct", "silent_gross_pct", "deg_per_px_estimate_ratio", "world"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["frames"], 100);
@@ -82,6 +85,23 @@ TEST(AgentCliTest, ABadConfigPathExitsNonZeroNamingTheFile) {
   const Outcome o = RunAgent("--config " + missing + " --frames 5", scratch);
   EXPECT_NE(o.exit_code, 0);
   EXPECT_NE(o.err.find(missing), std::string::npos) << o.err;
+  std::filesystem::remove_all(scratch);
+}
+
+TEST(AgentCliTest, WorldFlagsWithoutSimAreRefused) {
+  const auto scratch = ScratchDir();
+  const Outcome o = RunAgent("--world realistic --frames 5", scratch);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.err.find("need --sim"), std::string::npos) << o.err;
+  std::filesystem::remove_all(scratch);
+}
+
+TEST(AgentCliTest, AWorldFlagOutOfRangeIsRefusedInOneLineNamingIt) {
+  const auto scratch = ScratchDir();
+  const Outcome o = RunAgent("--sim --frame-drops 0.9 --frames 5", scratch);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.err.find("--frame-drops"), std::string::npos) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
   std::filesystem::remove_all(scratch);
 }
 

@@ -136,5 +136,25 @@ TEST(PredictiveControllerTest, CorrectionInsideTheDeadBandHolds) {
   EXPECT_TRUE(controller.predicting_pan());  // held by the band, not by the P fallback
 }
 
+TEST(PredictiveControllerTest, HandsOverToPWhenTheViewShowsItsForecastsFail) {
+  // The servos never move (a belief that is wrong: the commands do not act), so the swing's
+  // forecast is good but every forecast the controller acted on leaves the whole swing in
+  // the view: worse than persistence's error. It must hand over to P.
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  for (int t = 0; t < 200; ++t) {
+    controller.Update(Measured(-NumericLoop::Swing(t)), {});
+  }
+  EXPECT_DOUBLE_EQ(controller.pan_forecast_weight(), 0.0);
+  EXPECT_FALSE(controller.predicting_pan());
+}
+
+TEST(PredictiveControllerTest, KeepsItsForecastWhileTheViewShowsItWorks) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  NumericLoop loop(10.0, 2);
+  loop.Run(controller, 300, 0);
+  EXPECT_DOUBLE_EQ(controller.pan_forecast_weight(), 1.0);
+  EXPECT_TRUE(controller.predicting_pan());
+}
+
 }  // namespace
 }  // namespace kapfix

@@ -109,6 +109,35 @@ TEST(FixationLoopTest, TrustedFrameEndsARunOfUntrustedOnes) {
   EXPECT_FALSE(loop.Process(blank, {}, 0.04).lock_lost);
 }
 
+TEST(FixationLoopTest, ALostLockIsReacquiredOnlyAfterARunOfTrustedFrames) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 2;
+  o.lock_regain_frames = 3;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  loop.Process(blank, {}, 0.04);
+  ASSERT_TRUE(loop.Process(blank, {}, 0.04).lock_lost);
+  // The stored reference is back in view, shifted: the first good frames are searched as a
+  // re-acquisition and do not steer yet (a lucky frame on a repetitive scene must not).
+  cv::Mat shifted;
+  cv::warpAffine(reference, shifted, cv::Matx23d(1, 0, 6, 0, 1, 0), reference.size(),
+                 cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  for (int k = 0; k < 2; ++k) {
+    const FixationLoop::Step step = loop.Process(shifted, {2.0, 0.0}, 0.04);
+    EXPECT_TRUE(step.reacquiring);
+    EXPECT_TRUE(step.lock_lost);
+    EXPECT_FALSE(step.trusted);
+    EXPECT_DOUBLE_EQ(step.targets.pan_deg, 2.0);  // held
+  }
+  const FixationLoop::Step regained = loop.Process(shifted, {2.0, 0.0}, 0.04);
+  EXPECT_FALSE(regained.lock_lost);
+  EXPECT_TRUE(regained.trusted);
+  EXPECT_NEAR(regained.match.displacement.x, 6.0, 0.5);
+  EXPECT_GT(regained.targets.pan_deg, 2.0);  // steering again
+}
+
 TEST(FixationLoopTest, FollowSumsTheFrameToFrameSteps) {
   FixationOptions o = Options();
   o.reference = FixationOptions::Reference::kPrevious;

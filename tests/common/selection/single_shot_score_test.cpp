@@ -103,6 +103,22 @@ TEST(SingleShotScoreTest, RepetitiveStripesScoreBelowASmoothTexture) {
   EXPECT_GT(smooth.score, 0.3);
 }
 
+TEST(SingleShotScoreTest, RepetitiveStripesAreMarkedAmbiguousASmoothTextureIsNot) {
+  const cv::Mat stripes = Stripes({300, 300}, 12);
+  const cv::Mat texture = testing::SmoothTexture({300, 300}, 11);
+  EXPECT_TRUE(ComputeSingleShotScore(stripes, kCentralPatch, {}, AlongX()).ambiguous);
+  EXPECT_FALSE(ComputeSingleShotScore(texture, kCentralPatch, {}, AlongX()).ambiguous);
+}
+
+TEST(SingleShotScoreTest, TheChessboardIsMarkedAmbiguous) {
+  cv::Mat grey;
+  cv::cvtColor(testing::LoadOpenCvPhoto("left01.jpg"), grey, cv::COLOR_BGR2GRAY);
+  // The board fills the middle of the photo: a 100 px patch there, searched ±100 px.
+  SearchOptions search = AlongX();
+  search.range = 100;
+  EXPECT_TRUE(ComputeSingleShotScore(grey, cv::Rect(270, 190, 100, 100), {}, search).ambiguous);
+}
+
 TEST(SingleShotScoreTest, AFlatPatchScoresZero) {
   const cv::Mat flat(300, 300, CV_8UC1, cv::Scalar(128));
   EXPECT_EQ(ComputeSingleShotScore(flat, kCentralPatch, {}, AlongX()).score, 0.0);

@@ -28,6 +28,12 @@ TEST(SliceScoreKindTest, RefusesAnUnknownName) {
   EXPECT_FALSE(ParseSliceScoreKind("dcs").has_value());
 }
 
+TEST(RankSlicesTest, AmbiguousSlicesComeAfterEveryUnambiguousOne) {
+  std::vector<SliceScore> scores{Score(1, 30, 1.0), Score(2, 10, 9.0), Score(3, 20, 5.0)};
+  scores[1].ambiguous = true;  // the fewest direction changes, but a repetitive texture
+  EXPECT_EQ(RankSlices(scores, SliceScoreKind::kDc), (std::vector<int>{3, 1, 2}));
+}
+
 TEST(RankSlicesTest, DcRanksFewestChangesFirst) {
   const std::vector<SliceScore> scores{Score(1, 30, 1.0), Score(2, 10, 9.0), Score(3, 20, 5.0)};
   EXPECT_EQ(RankSlices(scores, SliceScoreKind::kDc), (std::vector<int>{2, 3, 1}));

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace kapfix {
 namespace {
@@ -152,6 +155,88 @@ TEST(KiteMotionTest, InvalidOptionsAreRejectedWithAReason) {
   o.gust_rate_per_frame = std::nan("");
   EXPECT_FALSE(o.IsValid(nullptr));
   EXPECT_TRUE(KiteMotionOptions{}.IsValid(nullptr));
+}
+
+// Frames between the swing's upward zero crossings, over `frames`.
+std::vector<int> Periods(const KiteMotion& kite, int frames) {
+  std::vector<int> periods;
+  int last = -1;
+  for (int t = 1; t < frames; ++t) {
+    if (kite.LineOfSight(t - 1).x < 0 && kite.LineOfSight(t).x >= 0) {
+      if (last >= 0) periods.push_back(t - last);
+      last = t;
+    }
+  }
+  return periods;
+}
+
+TEST(KiteMotionTest, PeriodDriftMakesThePeriodWander) {
+  KiteMotionOptions o;
+  o.decay_frames = 1e9;  // no decay: zero crossings all flight long
+  o.jitter_sigma_px = 0;
+  const std::vector<int> steady = Periods(KiteMotion(o), 1200);
+  o.period_drift = 0.2;
+  const std::vector<int> drifting = Periods(KiteMotion(o), 1200);
+  ASSERT_FALSE(steady.empty());
+  ASSERT_FALSE(drifting.empty());
+  for (const int p : steady) EXPECT_NEAR(p, 40, 1);
+  const auto [lo, hi] = std::minmax_element(drifting.begin(), drifting.end());
+  EXPECT_LE(*lo, 36);
+  EXPECT_GE(*hi, 44);
+}
+
+TEST(KiteMotionTest, SwayAddsASlowMotionOnBothAxesFromRest) {
+  KiteMotionOptions o;
+  o.amplitude_px = 0;
+  o.jitter_sigma_px = 0;
+  o.sway_amplitude_px = 20;
+  const KiteMotion kite(o);
+  EXPECT_EQ(kite.LineOfSight(0), cv::Point2d(0, 0));
+  double largest_x = 0, largest_y = 0, largest_step = 0;
+  for (int t = 1; t < 600; ++t) {
+    largest_x = std::max(largest_x, std::abs(kite.LineOfSight(t).x));
+    largest_y = std::max(largest_y, std::abs(kite.LineOfSight(t).y));
+    largest_step =
+        std::max(largest_step, std::abs(kite.LineOfSight(t).x - kite.LineOfSight(t - 1).x));
+  }
+  EXPECT_GT(largest_x, 15.0);
+  EXPECT_GT(largest_y, 5.0);
+  EXPECT_LT(largest_step, 1.0);  // slow: under a pixel per frame
+}
+
+TEST(KiteMotionTest, BroadbandGustsAreNotTheSwingsPeriod) {
+  KiteMotionOptions o;
+  o.amplitude_px = 0;
+  o.jitter_sigma_px = 0;
+  o.gusts = true;
+  o.gust_model = KiteMotionOptions::GustModel::kBroadband;
+  const KiteMotion kite(o);
+  // An AR(2) fitted by least squares explains same-period gusts exactly; broadband
+  // turbulence leaves a residual, and its power sits below the swing's frequency.
+  double slow = 0, at_swing = 0;
+  const int n = 2000;
+  for (const auto& [f, sum] : {std::pair{1.0 / 400, &slow}, std::pair{1.0 / 40, &at_swing}}) {
+    double re = 0, im = 0;
+    for (int t = 0; t < n; ++t) {
+      re += kite.LineOfSight(t).x * std::cos(2 * std::numbers::pi * f * t);
+      im += kite.LineOfSight(t).x * std::sin(2 * std::numbers::pi * f * t);
+    }
+    *sum = std::hypot(re, im);
+  }
+  EXPECT_GT(slow, 3.0 * at_swing);
+  EXPECT_TRUE(kite.Gusts(0, n).empty());  // no pendulum impulses in this model
+}
+
+TEST(KiteMotionTest, DriftAndSwayOutOfRangeAreRejected) {
+  KiteMotionOptions o;
+  o.period_drift = 0.7;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("drift"), std::string::npos);
+  o.period_drift = 0;
+  o.sway_amplitude_px = -1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("sway"), std::string::npos);
 }
 
 }  // namespace

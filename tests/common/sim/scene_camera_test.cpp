@@ -129,6 +129,63 @@ TEST(SceneCameraTest, BlurRemovesFineDetail) {
   EXPECT_LT(detail(blurred.Capture(0, {0, 0})), 0.5 * detail(sharp.Capture(0, {0, 0})));
 }
 
+double Detail(const cv::Mat& bgr) {
+  cv::Mat grey, lap;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  cv::Laplacian(grey, lap, CV_32F);
+  cv::Scalar mean, sigma;
+  cv::meanStdDev(lap, mean, sigma);
+  return sigma[0];
+}
+
+TEST(SceneCameraTest, MotionBlurGrowsWithTheViewsSpeed) {
+  SceneCameraOptions o = Clean();
+  o.motion_blur_exposure = 0.5;
+  const SceneCamera camera(testing::LoadOpenCvPhoto("aero1.jpg"), o);
+  const double still = Detail(camera.Capture(0, {0, 0}, {0, 0}));
+  const double slow = Detail(camera.Capture(0, {0, 0}, {4, 0}));
+  const double fast = Detail(camera.Capture(0, {0, 0}, {16, 0}));
+  EXPECT_LT(slow, 0.9 * still);
+  EXPECT_LT(fast, 0.7 * slow);
+}
+
+TEST(SceneCameraTest, RollTurnsTheFrameAboutItsCentre) {
+  SceneCameraOptions o = Clean();
+  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
+  const SceneCamera level(scene, o);
+  o.roll_max_deg = 5;
+  const SceneCamera rolled(scene, o);
+  EXPECT_DOUBLE_EQ(rolled.RollDeg(0), 0.0);  // the reference frame is level
+  int frame = 1;
+  while (std::abs(rolled.RollDeg(frame)) < 2.0 && frame < 200) ++frame;
+  ASSERT_GE(std::abs(rolled.RollDeg(frame)), 2.0) << "roll never reached 2° in 200 frames";
+  for (int f = 0; f < 400; ++f) EXPECT_LE(std::abs(rolled.RollDeg(f)), 5.0);
+  const cv::Mat a = level.Capture(frame, {0, 0}), b = rolled.Capture(frame, {0, 0});
+  // The centre stays, the corners move.
+  const cv::Rect centre(140, 140, 20, 20), corner(0, 0, 40, 40);
+  EXPECT_LT(cv::norm(a(centre), b(centre), cv::NORM_L1) / centre.area(),
+            0.5 * cv::norm(a(corner), b(corner), cv::NORM_L1) / corner.area());
+}
+
+TEST(SceneCameraTest, ExposureStepsChangeTheMeanByAtMostTheirShare) {
+  SceneCameraOptions o = Clean();
+  o.exposure_step_max = 0.2;
+  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
+  const SceneCamera camera(scene, o);
+  EXPECT_DOUBLE_EQ(camera.ExposureGain(0), 1.0);
+  bool stepped = false;
+  for (int f = 0; f < 2000; f += 25) {
+    EXPECT_LE(std::abs(camera.ExposureGain(f) - 1.0), 0.2);
+    stepped = stepped || std::abs(camera.ExposureGain(f) - 1.0) > 0.05;
+  }
+  EXPECT_TRUE(stepped);
+  int f = 125;
+  while (std::abs(camera.ExposureGain(f) - 1.0) < 0.05) f += 125;
+  const double ratio =
+      cv::mean(camera.Capture(f, {0, 0}))[0] / cv::mean(camera.Capture(0, {0, 0}))[0];
+  EXPECT_NEAR(ratio, camera.ExposureGain(f), 0.03);
+}
+
 TEST(SceneCameraTest, LargeEnoughSceneIsNotUpscaled) {
   SceneCameraOptions o;
   o.frame_size = {200, 200};

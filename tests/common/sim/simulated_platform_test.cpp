@@ -145,5 +145,23 @@ TEST(SimulatedPlatformTest, ServoLimitsBoundTheAngle) {
   EXPECT_DOUBLE_EQ(platform.ViewOffset().x, 50.0);
 }
 
+TEST(SimulatedPlatformTest, FrameDropsLoseAboutTheirShareOfFrames) {
+  SimulatedPlatformOptions o;
+  o.frame_drop_rate = 0.1;
+  const SimulatedPlatform platform(testing::SmoothTexture({700, 700}, 3), o);
+  int dropped = 0;
+  for (int f = 0; f < 2000; ++f) dropped += platform.FrameDropped(f) ? 1 : 0;
+  EXPECT_FALSE(platform.FrameDropped(0));  // the reference frame always arrives
+  EXPECT_NEAR(dropped / 2000.0, 0.1, 0.02);
+}
+
+TEST(SimulatedPlatformTest, FrameDropRateBeyondHalfIsRejected) {
+  SimulatedPlatformOptions o;
+  o.frame_drop_rate = 0.6;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("frame drop"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace kapfix

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 
 namespace kapfix {
@@ -154,6 +155,59 @@ TEST(SimulatedServoTest, InvalidOptionsAreRejectedWithAReason) {
   o = SimulatedServoOptions{};
   o.latency_frames = -1;
   EXPECT_FALSE(o.IsValid(nullptr));
+}
+
+TEST(SimulatedServoTest, LatencyJitterDelaysEachCommandByOneToNFrames) {
+  SimulatedServoOptions o;
+  o.latency_frames = 1;
+  o.latency_max_frames = 4;
+  o.dead_band_deg = 0;
+  o.backlash_deg = 0;
+  o.rate_limit_deg_per_frame = 100;
+  std::set<int> delays;
+  for (int trial = 0; trial < 40; ++trial) {
+    o.seed = static_cast<std::uint32_t>(trial + 1);
+    SimulatedServo servo(o);
+    servo.Command(10.0);
+    int steps = 0;
+    while (servo.angle() != 10.0 && steps < 10) {
+      servo.Step();
+      ++steps;
+    }
+    delays.insert(steps - 1);  // Steps without motion before the one that moved
+  }
+  EXPECT_EQ(delays, (std::set<int>{1, 2, 3, 4}));
+}
+
+TEST(SimulatedServoTest, AnOvertakenCommandIsNeverFollowed) {
+  SimulatedServoOptions o;
+  o.latency_frames = 1;
+  o.latency_max_frames = 6;
+  o.dead_band_deg = 0;
+  o.backlash_deg = 0;
+  o.rate_limit_deg_per_frame = 100;
+  for (std::uint32_t seed = 1; seed <= 30; ++seed) {
+    o.seed = seed;
+    SimulatedServo servo(o);
+    // Targets grow with each command: once the servo has followed one, an older (smaller)
+    // one arriving late must not pull it back.
+    double highest = 0;
+    for (int k = 1; k <= 20; ++k) {
+      servo.Command(k);
+      servo.Step();
+      EXPECT_GE(servo.angle(), highest) << "seed " << seed << " step " << k;
+      highest = std::max(highest, servo.angle());
+    }
+  }
+}
+
+TEST(SimulatedServoTest, LatencyJitterBelowTheLatencyIsRejected) {
+  SimulatedServoOptions o;
+  o.latency_frames = 3;
+  o.latency_max_frames = 2;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("jitter"), std::string::npos);
 }
 
 }  // namespace

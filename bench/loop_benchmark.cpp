@@ -1,0 +1,297 @@
+// kapfix-bench-loop: the closed loop in a world it was not built for (issue 9). Scenes
+// (opencv-doc photos, the chessboard left01.jpg included) × worlds (nominal, each field
+// disturbance alone, realistic) × controllers (P at its best gain found by a sweep per world,
+// PID, predictive — the default) × seeds, flown headless by EvaluateClosedLoop from the first
+// frame (--mode fixate). Prints a table, writes DIR/loop.csv, DIR/loop_heatmap.png and
+// DIR/summary.json. Progress on stderr.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
+
+#include "common/evaluation/closed_loop_evaluation.hpp"
+#include "common/plot/heat_map.hpp"
+
+namespace kapfix::bench {
+namespace {
+
+const std::vector<std::string> kPhotos = {
+    "aero1.jpg",   "aero3.jpg",  "building.jpg",     "fruits.jpg", "baboon.jpg",
+    "leuvenA.jpg", "left01.jpg", "starry_night.jpg", "home.jpg",   "board.jpg"};
+
+struct World {
+  std::string name;
+  WorldOptions options;
+};
+
+std::vector<World> Worlds() {
+  const WorldOptions realistic = WorldOptions::Realistic();
+  std::vector<World> worlds;
+  const auto alone = [&worlds](const std::string& name, auto&& turn_on) {
+    WorldOptions w;
+    turn_on(w);
+    worlds.push_back({name, w});
+  };
+  worlds.push_back({"nominal", WorldOptions::Nominal()});
+  alone("broadband", [](WorldOptions& w) { w.gusts = WorldOptions::Gusts::kBroadband; });
+  alone("drift", [&](WorldOptions& w) { w.period_drift = realistic.period_drift; });
+  alone("sway", [](WorldOptions& w) { w.sway = true; });
+  alone("roll", [&](WorldOptions& w) { w.roll_deg = realistic.roll_deg; });
+  alone("blur", [](WorldOptions& w) { w.blur = true; });
+  alone("exposure", [](WorldOptions& w) { w.exposure_steps = true; });
+  alone("jitter", [&](WorldOptions& w) { w.latency_jitter = realistic.latency_jitter; });
+  alone("drops", [&](WorldOptions& w) { w.frame_drops = realistic.frame_drops; });
+  alone("calib0.6", [](WorldOptions& w) { w.calibration_error = 0.6; });
+  alone("calib1.6", [](WorldOptions& w) { w.calibration_error = 1.6; });
+  worlds.push_back({"realistic", realistic});
+  return worlds;
+}
+
+struct Run {
+  std::string scene, world, controller;
+  double gain = 1;
+  int seed = 1;
+  ClosedLoopFigures figures;
+};
+
+ClosedLoopOptions Options(const World& world, const std::string& controller, double gain, int seed,
+                          int frames) {
+  ClosedLoopOptions o;
+  o.frames = frames;
+  o.world = world.options;
+  o.controller = controller;
+  if (controller != "predictive") o.gains.p = gain;  // the default controller keeps its gains
+  if (controller == "pid") {
+    // A PID as an operator would set it: the P gain plus a little integral and derivative.
+    o.gains.i = 0.5;
+    o.gains.d = 0.01;
+  }
+  o.platform.kite.seed = static_cast<std::uint32_t>(seed);
+  o.platform.camera.seed = static_cast<std::uint32_t>(seed);
+  return o;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (const double x : v) s += x;
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : s / static_cast<double>(v.size());
+}
+
+int Main(int argc, char** argv) {
+  CLI::App app{"kapfix-bench-loop: closed loop over scenes × worlds × controllers × seeds"};
+  bool quick = false;
+  int frames = 0, seeds = 3, sweep_scenes = 0;
+  std::string out_dir = "loop-bench";
+  std::vector<std::string> only_worlds;
+  app.add_flag("--quick", quick, "fewer frames and a smaller P-gain sweep (a few minutes)");
+  app.add_option("--frames", frames,
+                 "frames per flight after the reference (default 500; quick 250)")
+      ->check(CLI::Range(20, 100000));
+  app.add_option("--seeds", seeds, "seeds per scene and world (≥ 3 for the issue's table)")
+      ->check(CLI::Range(1, 100));
+  app.add_option("--sweep-scenes", sweep_scenes,
+                 "scenes the P-gain sweep flies per world (default all; quick 3)")
+      ->check(CLI::Range(1, 100));
+  app.add_option("--worlds", only_worlds,
+                 "only these worlds (default all), e.g. nominal realistic");
+  app.add_option("--out", out_dir, "folder for loop.csv, loop_heatmap.png, summary.json");
+  CLI11_PARSE(app, argc, argv);
+  if (frames == 0) frames = quick ? 200 : 500;
+  if (sweep_scenes == 0) sweep_scenes = quick ? 2 : static_cast<int>(kPhotos.size());
+  const std::vector<double> sweep_gains =
+      quick ? std::vector<double>{0.5, 0.75, 1.0} : std::vector<double>{0.4, 0.6, 0.8, 1.0, 1.2};
+
+  std::map<std::string, cv::Mat> scenes;
+  for (const std::string& name : kPhotos) {
+    const std::string path = std::string(KAPFIX_OPENCV_DATA_DIR) + "/" + name;
+    cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+    if (image.empty()) {
+      std::fprintf(stderr, "kapfix-bench-loop: cannot read %s (package opencv-doc)\n",
+                   path.c_str());
+      return 1;
+    }
+    scenes[name] = image;
+  }
+  std::filesystem::create_directories(out_dir);
+  std::vector<World> worlds = Worlds();
+  if (!only_worlds.empty()) {
+    std::erase_if(worlds, [&only_worlds](const World& w) {
+      return std::find(only_worlds.begin(), only_worlds.end(), w.name) == only_worlds.end();
+    });
+    if (worlds.size() != only_worlds.size()) {
+      std::fprintf(stderr, "kapfix-bench-loop: unknown world in --worlds (known:");
+      for (const World& w : Worlds()) std::fprintf(stderr, " %s", w.name.c_str());
+      std::fprintf(stderr, ")\n");
+      return 2;
+    }
+  }
+  const std::size_t total =
+      worlds.size() * (sweep_gains.size() * static_cast<std::size_t>(sweep_scenes) +
+                       3 * kPhotos.size() * static_cast<std::size_t>(seeds));
+  std::size_t done = 0;
+  const auto fly = [&](const std::string& scene, const World& world, const std::string& controller,
+                       double gain, int seed) {
+    Run run{scene,
+            world.name,
+            controller,
+            gain,
+            seed,
+            EvaluateClosedLoop(scenes[scene], Options(world, controller, gain, seed, frames))};
+    ++done;
+    std::fprintf(stderr, "\r[%zu/%zu] %-9s %-16s %-10s %4.2f seed %d: %6.2f px   ", done, total,
+                 world.name.c_str(), scene.c_str(), controller.c_str(), gain, seed,
+                 run.figures.rms_error_px);
+    return run;
+  };
+
+  std::vector<Run> runs;
+  std::map<std::string, double> best_gain;
+  for (const World& world : worlds) {
+    // P's best gain in this world: the lowest median RMS over the sweep's scenes (seed 1).
+    double best = std::numeric_limits<double>::infinity();
+    for (const double gain : sweep_gains) {
+      std::vector<double> rms;
+      for (int s = 0; s < sweep_scenes; ++s) {
+        rms.push_back(
+            fly(kPhotos[static_cast<std::size_t>(s)], world, "p", gain, 1).figures.rms_error_px);
+      }
+      if (Median(rms) < best) {
+        best = Median(rms);
+        best_gain[world.name] = gain;
+      }
+    }
+    for (const std::string& scene : kPhotos) {
+      for (int seed = 1; seed <= seeds; ++seed) {
+        // P at its best gain is what the others are compared with (issue 9); PID starts from
+        // the same gain.
+        for (const std::string controller : {"predictive", "pid", "p"}) {
+          runs.push_back(fly(scene, world, controller, best_gain[world.name], seed));
+        }
+      }
+    }
+  }
+  std::fprintf(stderr, "\n");
+
+  // CSV, one row per flight.
+  {
+    std::ofstream csv(out_dir + "/loop.csv");
+    csv << "scene,world,controller,p_gain,seed,rms_error_px,p95_error_px,gross_pct,"
+           "silent_gross_pct,lock_lost_pct,dropped_pct\n";
+    for (const Run& r : runs) {
+      const ClosedLoopFigures& f = r.figures;
+      csv << r.scene << ',' << r.world << ',' << r.controller << ',' << r.gain << ',' << r.seed
+          << ',' << f.rms_error_px << ',' << f.p95_error_px << ',' << f.gross_pct << ','
+          << f.silent_gross_pct << ',' << f.lock_lost_pct << ',' << f.dropped_pct << '\n';
+    }
+  }
+
+  // Per scene and world: the mean over seeds of each controller's RMS.
+  std::map<std::string, std::map<std::string, std::map<std::string, std::vector<double>>>> rms;
+  std::map<std::string, double> worst_silent;  // per world, over scenes and seeds
+  std::map<std::string, std::vector<double>> p95_by_world, gross_by_world;
+  for (const Run& r : runs) {
+    rms[r.world][r.scene][r.controller].push_back(r.figures.rms_error_px);
+    if (r.controller == "predictive") {
+      worst_silent[r.world] = std::max(worst_silent[r.world], r.figures.silent_gross_pct);
+      p95_by_world[r.world].push_back(r.figures.p95_error_px);
+      gross_by_world[r.world].push_back(r.figures.gross_pct);
+    }
+  }
+  std::printf("%d frames, %d seeds, P gain swept over", frames, seeds);
+  for (const double g : sweep_gains) std::printf(" %.2f", g);
+  std::printf(" on %d scenes\n\n", sweep_scenes);
+  std::printf("%-10s %7s | %9s %9s %9s | %12s %11s | %10s %8s\n", "world", "P gain", "pred_px",
+              "P*_px", "pid_px", "worst pred/P", "(scene)", "max silent", "gross%");
+  std::vector<double> heat;
+  nlohmann::json per_world = nlohmann::json::object();
+  for (const World& world : worlds) {
+    std::vector<double> pred, p, pid;
+    double worst = 0;
+    std::string worst_scene;
+    for (const std::string& scene : kPhotos) {
+      const auto& c = rms[world.name][scene];
+      pred.push_back(Mean(c.at("predictive")));
+      p.push_back(Mean(c.at("p")));
+      pid.push_back(Mean(c.at("pid")));
+      const double ratio = pred.back() / p.back();
+      if (ratio > worst) {
+        worst = ratio;
+        worst_scene = scene;
+      }
+    }
+    std::printf("%-10s %7.2f | %9.2f %9.2f %9.2f | %12.2f %11s | %10.2f %8.2f\n",
+                world.name.c_str(), best_gain[world.name], Median(pred), Median(p), Median(pid),
+                worst, worst_scene.c_str(), worst_silent[world.name],
+                Median(gross_by_world[world.name]));
+    per_world[world.name] = {{"p_best_gain", best_gain[world.name]},
+                             {"median_rms_error_px", Median(pred)},
+                             {"median_rms_error_px_p_best", Median(p)},
+                             {"median_rms_error_px_pid", Median(pid)},
+                             {"worst_ratio_to_p_best", worst},
+                             {"worst_ratio_scene", worst_scene},
+                             {"p95_error_px", Median(p95_by_world[world.name])},
+                             {"gross_pct", Median(gross_by_world[world.name])},
+                             {"silent_gross_pct", worst_silent[world.name]}};
+  }
+  std::printf("\npredictive RMS [px] per scene (mean over seeds):\n%-17s", "scene");
+  for (const World& world : worlds) std::printf(" %9s", world.name.c_str());
+  std::printf("\n");
+  std::vector<std::string> world_names;
+  for (const World& world : worlds) world_names.push_back(world.name);
+  for (const std::string& scene : kPhotos) {
+    std::printf("%-17s", scene.c_str());
+    for (const World& world : worlds) {
+      const double v = Mean(rms[world.name][scene]["predictive"]);
+      heat.push_back(v);
+      std::printf(" %9.2f", v);
+    }
+    std::printf("\n");
+  }
+  cv::imwrite(out_dir + "/loop_heatmap.png",
+              plot::RenderHeatMap("predictive controller: RMS view error [px], mean over seeds",
+                                  kPhotos, world_names, heat, 1.0, 100.0));
+  // The issue's keys, for the realistic world (the default controller); the online
+  // calibration is not built yet, so its ratio is null.
+  const nlohmann::json realistic =
+      per_world.contains("realistic") ? per_world["realistic"] : nlohmann::json::object();
+  nlohmann::json summary = {
+      {"frames", frames},
+      {"seeds", seeds},
+      {"p95_error_px", realistic.value("p95_error_px", nlohmann::json())},
+      {"gross_pct", realistic.value("gross_pct", nlohmann::json())},
+      {"silent_gross_pct", realistic.value("silent_gross_pct", nlohmann::json())},
+      {"deg_per_px_estimate_ratio", nullptr},
+      {"worlds", per_world}};
+  std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
+  std::printf("\nwrote %s/loop.csv, %s/loop_heatmap.png, %s/summary.json\n", out_dir.c_str(),
+              out_dir.c_str(), out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace kapfix::bench
+
+int main(int argc, char** argv) {
+  try {
+    return kapfix::bench::Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kapfix-bench-loop: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,112 @@
+// Each of the field's disturbances (issue 9) measurably degrades the closed loop against the
+// nominal world with the same seed: the simulated world really does what its flag says.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <map>
+#include <string>
+
+#include "common/evaluation/closed_loop_evaluation.hpp"
+#include "tests/support/test_images.hpp"
+
+namespace kapfix {
+namespace {
+
+constexpr int kFrames = 300;
+
+ClosedLoopFigures Fly(const WorldOptions& world, const std::string& controller = "predictive") {
+  ClosedLoopOptions options;
+  options.frames = kFrames;
+  options.world = world;
+  options.controller = controller;
+  return EvaluateClosedLoop(testing::LoadOpenCvPhoto("aero1.jpg"), options);
+}
+
+const ClosedLoopFigures& Nominal(const std::string& controller) {
+  static std::map<std::string, ClosedLoopFigures> figures;
+  if (!figures.contains(controller)) figures[controller] = Fly(WorldOptions::Nominal(), controller);
+  return figures[controller];
+}
+
+struct Disturbance {
+  std::string name;
+  std::function<void(WorldOptions*)> turn_on;
+  double min_ratio;  // the disturbed figure must be at least this × the nominal one
+  // The figure that degrades: the view's RMS error for the platform's and the servos'
+  // disturbances; the matcher's RMS miss for the image's (roll, blur, exposure), which the
+  // loop's feedback then absorbs.
+  double ClosedLoopFigures::*figure = &ClosedLoopFigures::rms_error_px;
+  std::string controller = "predictive";
+};
+
+std::string DisturbanceName(const ::testing::TestParamInfo<Disturbance>& param) {
+  return param.param.name;
+}
+
+class ClosedLoopWorldTest : public ::testing::TestWithParam<Disturbance> {};
+
+TEST_P(ClosedLoopWorldTest, DegradesTheLoopAgainstTheNominalWorld) {
+  WorldOptions world;
+  GetParam().turn_on(&world);
+  const ClosedLoopFigures disturbed = Fly(world, GetParam().controller);
+  const ClosedLoopFigures& nominal = Nominal(GetParam().controller);
+  const auto figure = GetParam().figure;
+  EXPECT_GT(disturbed.*figure, GetParam().min_ratio * (nominal.*figure))
+      << GetParam().name << ": " << disturbed.*figure << " px against nominal " << nominal.*figure
+      << " px";
+}
+
+// Motion blur is not among them: it grows with the view's speed, which a working loop keeps
+// to a few px per frame, and a symmetric smear barely moves the SSD minimum — measured on
+// aero1 at 300 frames, +1 % confidence loss under P, +3 % matcher miss. Its effect on the
+// frames is tested in scene_camera_test (MotionBlurGrowsWithTheViewsSpeed).
+INSTANTIATE_TEST_SUITE_P(
+    EachDisturbanceAlone, ClosedLoopWorldTest,
+    ::testing::Values(
+        Disturbance{"BroadbandGusts",
+                    [](WorldOptions* w) { w->gusts = WorldOptions::Gusts::kBroadband; }, 1.2},
+        Disturbance{"PeriodDrift", [](WorldOptions* w) { w->period_drift = 0.3; }, 1.1},
+        Disturbance{"Sway", [](WorldOptions* w) { w->sway = true; }, 1.05},
+        Disturbance{"Roll", [](WorldOptions* w) { w->roll_deg = 5; }, 1.1,
+                    &ClosedLoopFigures::measurement_rms_px},
+        Disturbance{"ExposureSteps", [](WorldOptions* w) { w->exposure_steps = true; }, 1.05,
+                    &ClosedLoopFigures::measurement_rms_px},
+        Disturbance{"LatencyJitter", [](WorldOptions* w) { w->latency_jitter = 4; }, 1.2},
+        Disturbance{"FrameDrops", [](WorldOptions* w) { w->frame_drops = 0.1; }, 1.1},
+        Disturbance{"CalibrationError", [](WorldOptions* w) { w->calibration_error = 1.6; }, 1.1}),
+    DisturbanceName);
+
+TEST(ClosedLoopWorldOptionsTest, RefusesAWorldOutOfRangeWithItsFlagInTheReason) {
+  ClosedLoopOptions options;
+  options.world.frame_drops = 0.9;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("--frame-drops"), std::string::npos) << error;
+}
+
+TEST(ClosedLoopWorldOptionsTest, TheSameSeedFliesTheSameRealisticWorld) {
+  ClosedLoopOptions options;
+  options.frames = 60;
+  options.world = WorldOptions::Realistic();
+  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
+  const ClosedLoopFigures a = EvaluateClosedLoop(scene, options);
+  const ClosedLoopFigures b = EvaluateClosedLoop(scene, options);
+  ASSERT_EQ(a.view_offsets.size(), b.view_offsets.size());
+  for (std::size_t i = 0; i < a.view_offsets.size(); ++i) {
+    EXPECT_EQ(a.view_offsets[i], b.view_offsets[i]) << "frame " << i;
+  }
+}
+
+TEST(ClosedLoopAmbiguityTest, TheChessboardIsReportedNotSilentlyHeld) {
+  // left01.jpg: a chessboard, whose neighbouring squares match nearly as well as the right
+  // one. The loop may lose it, but must say so: nearly every frame whose true view error is
+  // gross carries lock_lost.
+  ClosedLoopOptions options;
+  options.frames = 200;
+  const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("left01.jpg"), options);
+  EXPECT_GT(f.lock_lost_pct, 50.0);
+  EXPECT_LT(f.silent_gross_pct, 3.0) << "gross " << f.gross_pct << " %";
+}
+
+}  // namespace
+}  // namespace kapfix
