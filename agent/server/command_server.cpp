@@ -13,6 +13,8 @@
 #include <zmq.hpp>
 
 #include "agent/server/command_intake.hpp"
+#include "agent/server/connection_monitor.hpp"
+#include "agent/server/link_endpoint.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "agent/server/whole_message_receive.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
@@ -30,6 +32,13 @@ constexpr std::string_view kHeartbeatTopic = "heartbeat";
 constexpr std::string_view kReplyTopic = "reply";
 
 std::string_view View(const zmq::message_t& frame) { return frame.to_string_view(); }
+
+// The station across connections: with CurveZMQ, the name (or key) the ZAP handler gave its
+// key; a plain station has none that it could not choose itself.
+std::string StationOf(const zmq::message_t& frame) {
+  const char* user = zmq_msg_gets(frame.handle(), "User-Id");
+  return user != nullptr ? std::string(user) : std::string();
+}
 
 // One request as it arrived: the frames kept and how many there were in all.
 struct Request {
@@ -49,7 +58,7 @@ struct Envelope {
 
 struct CommandServer::Impl {
   Impl(AgentControl& agent, CommandServerOptions opts)
-      : options(std::move(opts)), intake(agent, options.agent_id, options.limits) {}
+      : options(std::move(opts)), intake(agent, options.agent_id, options.limits, options.replay) {}
 
   void Run(std::promise<std::string> bound);
   void Serve(zmq::socket_t& socket);
@@ -65,7 +74,8 @@ struct CommandServer::Impl {
   CommandIntake intake;  // owned by the server thread
 
   std::unique_ptr<zmq::context_t> context;
-  std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
+  std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
+  std::unique_ptr<ConnectionMonitor> monitor;  // made by the socket thread
   std::thread thread;
 
   std::atomic<std::uint64_t> commands_ok{0};
@@ -88,12 +98,22 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
     socket.emplace(*context, zmq::socket_type::router);
     socket->set(zmq::sockopt::linger, 0);  // Stop() must not wait for replies to gone peers
     socket->set(zmq::sockopt::maxmsgsize, options.transport_limit_bytes);
+    socket->set(zmq::sockopt::handshake_ivl, static_cast<int>(options.handshake_timeout.count()));
     socket->set(zmq::sockopt::heartbeat_ivl,
                 static_cast<int>(options.zmtp_heartbeat_interval.count()));
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
     if (options.curve) RequireCurve(*socket, *options.curve);
-    socket->bind(options.bind_endpoint);
+    monitor = std::make_unique<ConnectionMonitor>(
+        "command server", ConnectionMonitorOptions{.max_connections = options.max_connections});
+    monitor->Start(*context, *socket);
+    std::string why;
+    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(options.bind_endpoint, &why);
+    if (!endpoint) {
+      bound.set_exception(std::make_exception_ptr(std::runtime_error("command server: " + why)));
+      return;
+    }
+    socket->bind(endpoint->canonical);
     bound.set_value(socket->get(zmq::sockopt::last_endpoint));
   } catch (const zmq::error_t& error) {
     bound.set_exception(std::make_exception_ptr(std::runtime_error(
@@ -154,8 +174,8 @@ void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) 
 void CommandServer::Impl::HandleCommand(zmq::socket_t& socket, const Request& request,
                                         const Envelope& envelope) {
   // The routing id identifies the station: sequence numbers are checked per connection.
-  CommandIntake::Outcome outcome =
-      intake.Answer(View(request.frames[0]), envelope.topic, envelope.payload);
+  CommandIntake::Outcome outcome = intake.Answer(
+      View(request.frames[0]), envelope.topic, envelope.payload, StationOf(request.frames.back()));
   if (outcome.station_heard) last_station_heard_us.store(request.received_us);
   SendReply(socket, request, envelope, std::move(outcome.reply), outcome.command_sequence);
 }
