@@ -15,6 +15,7 @@
 #include "agent/server/command_intake.hpp"
 #include "agent/server/connection_monitor.hpp"
 #include "agent/server/link_endpoint.hpp"
+#include "agent/server/request_frames.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "agent/server/whole_message_receive.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
@@ -26,7 +27,7 @@ using kapfix::v1::Reply;
 
 // A request has at most routing id, delimiter, topic and message; anything longer is
 // malformed, and its extra frames are read and discarded rather than kept in memory.
-constexpr std::size_t kMaxFramesKept = 4;
+constexpr std::size_t kMaxFramesKept = 1 + kRequestFramesKept;
 
 constexpr std::string_view kHeartbeatTopic = "heartbeat";
 constexpr std::string_view kReplyTopic = "reply";
@@ -143,24 +144,18 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
 }
 
 void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) {
+  // frames[0] is the routing id.
+  std::vector<std::string_view> kept;
+  for (std::size_t i = 1; i < request.frames.size(); ++i) kept.push_back(View(request.frames[i]));
+  const RequestFrames frames = ParseRequestFrames(kept, request.frame_count - 1);
   Envelope envelope;
-  std::size_t next = 1;  // frames[0] is the routing id
-  if (request.frames.size() > next && request.frames[next].size() == 0) {
-    envelope.delimiter = true;
-    ++next;
-  }
-  const std::size_t parts = request.frame_count - next;
-  if (parts == 2) {
-    envelope.topic = request.frames[next].to_string();
-    envelope.payload = View(request.frames[next + 1]);
-  } else if (parts == 1) {
-    envelope.payload = View(request.frames[next]);
-  } else {
+  envelope.delimiter = frames.delimiter;
+  envelope.topic = frames.topic;
+  envelope.payload = frames.payload;
+  if (!frames.error.empty()) {
     Reply reply;
     reply.set_error(kapfix::v1::ERROR_CODE_MALFORMED);
-    reply.set_reason("malformed request: expected [topic,] message after the routing id" +
-                     std::string(envelope.delimiter ? " and the empty delimiter" : "") + ", got " +
-                     std::to_string(parts) + " frames");
+    reply.set_reason(frames.error);
     SendReply(socket, request, envelope, std::move(reply), 0);
     return;
   }
