@@ -3,6 +3,7 @@
 // for the same number of frames on loopback, once quiet and once with N stations each sending
 // request_state as fast as the agent answers (the peer measured in the same run), and prints
 // the loop latency p50/p99 of both from the agent's own report, and the commands answered.
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,6 +19,7 @@
 #include <thread>
 #include <vector>
 #include <zmq.hpp>
+#include <zmq_addon.hpp>
 
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
