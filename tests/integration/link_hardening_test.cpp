@@ -272,5 +272,26 @@ TEST(LinkHardeningTest, CommandStamped1970IsRefusedNamingTheSkew) {
   EXPECT_THAT(reply->reason(), HasSubstr("behind the agent's clock"));
 }
 
+// Item 11: libprotobuf printed every invalid UTF-8 string to the agent's stderr, unthrottled.
+TEST(LinkHardeningTest, InvalidUtf8IsRefusedAsMalformedWithoutALogLine) {
+  AgentProcess agent({"--mode", "idle"});
+  RawStation station(agent.command_endpoint());
+  std::uint64_t sequence = 0;
+  ASSERT_TRUE(FirstReply(station, &sequence)) << agent.log();
+  kapfix::v1::Command command;
+  command.mutable_take_photo()->set_note("PLACEHOLDER");
+  kapfix::v1::Stamp(command.mutable_header(), "", ++sequence);
+  std::string bytes = command.SerializeAsString();
+  bytes.replace(bytes.find("PLACEHOLDER"), 11, "\xff\xfe bad!! \xc0\xaf");  // same length: 11
+  for (int i = 0; i < 20; ++i) {
+    const auto reply = ReplyTo(station, bytes, 0);  // unreadable: the reply names sequence 0
+    ASSERT_TRUE(reply.has_value());
+    EXPECT_EQ(reply->error(), kapfix::v1::ERROR_CODE_MALFORMED) << reply->reason();
+  }
+  ++sequence;
+  ASSERT_TRUE(ReplyTo(station, StateRequest(sequence)));  // the agent is still there
+  EXPECT_THAT(agent.log(), ::testing::Not(HasSubstr("UTF-8")));
+}
+
 }  // namespace
 }  // namespace kapfix::testing
