@@ -12,11 +12,14 @@
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/sim_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
+#include "agent/server/link_endpoint.hpp"
+#include "agent/server/peer_resource_limits.hpp"
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
 #include "kapfix/link/curve_key_file.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -100,13 +103,11 @@ AgentConfig BuiltInConfig(MotionKind motion) {
 }
 
 bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error) {
-  if (!link.curve_secret_key_file.empty() || insecure) return true;
   for (const std::string& address : {link.command_address, link.stream_address}) {
-    const bool local = address.starts_with("ipc://") || address.starts_with("inproc://") ||
-                       address.starts_with("tcp://127.") ||
-                       address.starts_with("tcp://localhost:") ||
-                       address.starts_with("tcp://[::1]:");
-    if (!local) {
+    // Parsed as the servers parse it: exactly one endpoint, judged on its literal address.
+    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(address, error);
+    if (!endpoint) return false;
+    if (!endpoint->loopback && link.curve_secret_key_file.empty() && !insecure) {
       if (error) {
         *error = "link address " + address +
                  " is reachable from the network but no CurveZMQ keys are configured "
@@ -231,7 +232,23 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     notifier->Status(status);
   };
 
+  // Before binding: descriptors for many connections plus the photos (issue 15, item 3).
+  constexpr std::uint64_t kWantedOpenFiles = 65536;
+  constexpr std::uint64_t kEnoughOpenFiles = 4096;  // ~100 s of 33 new connections a second
+  const std::uint64_t open_files = RaiseOpenFileLimit(kWantedOpenFiles);
+  if (open_files < kEnoughOpenFiles) {
+    spdlog::warn("link: at most {} open files (wanted {}): raise LimitNOFILE", open_files,
+                 kWantedOpenFiles);
+  }
+  ReturnLargeBuffersWhenFreed();
+  kapfix::v1::QuietLibprotobufLog();  // invalid UTF-8 from a peer: refused, not printed
+  // Each server's connection budget: half of the descriptors, less a reserve for photos,
+  // calibrations and logs.
+  constexpr std::uint64_t kReservedFiles = 256;
+  const std::size_t budget = static_cast<std::size_t>(
+      std::clamp<std::uint64_t>((open_files - std::min(open_files, kReservedFiles)) / 2, 16, 4096));
   StreamPublisherOptions publisher_options;
+  publisher_options.max_connections = budget;
   publisher_options.bind_endpoint = config_.link.stream_address;
   publisher_options.agent_id = config_.agent_id;
   publisher_options.heartbeat_interval = std::chrono::milliseconds(config_.link.heartbeat_ms);
@@ -307,6 +324,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   server_options.bind_endpoint = config_.link.command_address;
   server_options.agent_id = config_.agent_id;
   server_options.curve = curve;
+  server_options.max_connections = budget;
+  server_options.replay->state_file = std::filesystem::path(config_.state_dir) / "replay_horizon";
   server_ = std::make_unique<CommandServer>(*executor_, server_options);
   stream_endpoint_ = publisher_->Start();
   command_endpoint_ = server_->Start();

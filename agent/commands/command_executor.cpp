@@ -89,10 +89,13 @@ kapfix::v1::Reply CommandExecutor::Execute(const kapfix::v1::Command& command) {
       return Ok();
     case kapfix::v1::Command::kTakePhoto: {
       std::string error;
-      if (!targets_.photos.Request(command.take_photo().note(), &error)) {
+      std::string file_name;
+      if (!targets_.photos.Request(command.take_photo().note(), &error, &file_name)) {
         return Refuse(kapfix::v1::ERROR_CODE_STORAGE, error);
       }
-      return Ok();
+      kapfix::v1::Reply reply = Ok();
+      reply.set_photo_file_name(file_name);
+      return reply;
     }
     case kapfix::v1::Command::kRequestState: {
       const kapfix::v1::RequestState& request = command.request_state();

@@ -1,7 +1,10 @@
 #include "agent/downlink/log_publisher.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <string>
+#include <utility>
 
 namespace kapfix::agent {
 namespace {
@@ -10,7 +13,8 @@ thread_local bool publishing = false;  // this thread is inside Publish: do not 
 
 }  // namespace
 
-LogPublisher::LogPublisher(StreamSink& stream, spdlog::level::level_enum level) : sink_(stream) {
+LogPublisher::LogPublisher(StreamSink& stream, spdlog::level::level_enum level, LogRateLimit limit)
+    : sink_(stream), limit_(limit), tokens_(limit.burst) {
   set_level(level);
 }
 
@@ -35,6 +39,21 @@ kapfix::v1::LogLevel LogPublisher::ToProto(spdlog::level::level_enum level) {
 
 void LogPublisher::log(const spdlog::details::log_msg& message) {
   if (publishing) return;
+  std::uint64_t skipped = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    const std::chrono::duration<double> elapsed = message.time - refilled_;
+    if (elapsed.count() > 0) {
+      tokens_ = std::min(limit_.burst, tokens_ + elapsed.count() * limit_.lines_per_s);
+      refilled_ = message.time;
+    }
+    if (tokens_ < 1) {
+      ++not_sent_;
+      return;
+    }
+    tokens_ -= 1;
+    std::swap(skipped, not_sent_);
+  }
   publishing = true;
   kapfix::v1::Log line;
   line.mutable_header()->set_capture_time_us(
@@ -42,6 +61,10 @@ void LogPublisher::log(const spdlog::details::log_msg& message) {
           .count());
   line.set_level(ToProto(message.level));
   line.set_text(std::string(message.payload.begin(), message.payload.end()));
+  if (skipped > 0) {
+    line.mutable_text()->append(" [" + std::to_string(skipped) +
+                                " earlier log lines not sent: rate limit]");
+  }
   line.set_logger(std::string(message.logger_name.begin(), message.logger_name.end()));
   sink_.Publish(line);
   publishing = false;

@@ -19,6 +19,25 @@
 namespace kapfix::agent {
 namespace {
 
+// Whether two settings build the same fixation loop (Rebuild's inputs: search, controller,
+// active lens). A setting re-sent unchanged must not reset the controller (issue 15, item 7).
+bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
+  const SearchConfig& s = a.search;
+  const SearchConfig& t = b.search;
+  const ControllerConfig& c = a.controller;
+  const ControllerConfig& d = b.controller;
+  const LensProfile& l = a.active_lens();
+  const LensProfile& m = b.active_lens();
+  return s.strategy == t.strategy && ToString(s.sampling) == ToString(t.sampling) &&
+         s.sampling.seed == t.sampling.seed && s.patch_px == t.patch_px && s.slices == t.slices &&
+         s.axis == t.axis && s.range_px == t.range_px && s.channel == t.channel &&
+         s.subpixel == t.subpixel && s.slice_score == t.slice_score &&
+         s.dc_hysteresis_px == t.dc_hysteresis_px && c.kind == d.kind && c.kp == d.kp &&
+         c.ki == d.ki && c.kd == d.kd && c.dead_band_px == d.dead_band_px &&
+         c.max_rate_deg_per_s == d.max_rate_deg_per_s && l.name == m.name &&
+         l.DegPerPxPan() == m.DegPerPxPan() && l.DegPerPxTilt() == m.DegPerPxTilt();
+}
+
 // Progress reports of a free-swing process every this many frames (and at its end): often
 // enough for a live progress bar, rare enough not to flood the link with graphs.
 constexpr std::uint64_t kProgressEveryFrames = 5;
@@ -116,9 +135,9 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
   }
   bool rebuild = false;
   if (pending.settings) {
+    rebuild = !SameLoop(settings_, *pending.settings);
     settings_ = *pending.settings;
     slice_ = std::clamp(slice_.load(), 1, settings_.search.slices);
-    rebuild = true;
   }
   if (pending.slice) {
     // Picking a slice means fixating on it (the operator confirms SSP's choice or overrides

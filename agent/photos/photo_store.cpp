@@ -27,7 +27,19 @@ std::string ReadAll(const std::filesystem::path& path) {
 
 }  // namespace
 
-PhotoStore::PhotoStore(std::filesystem::path dir) : dir_(std::move(dir)) {}
+PhotoStore::PhotoStore(std::filesystem::path dir) : dir_(std::move(dir)) {
+  // Names only: a JPEG with its sidecar is a photo (Save writes only complete pairs).
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
+    const std::filesystem::path& path = entry.path();
+    if (path.extension() == ".jpg" && std::filesystem::exists(SidecarPath(path), ec)) ++count_;
+  }
+}
+
+std::string PhotoStore::NewFileName(std::int64_t capture_time_us) {
+  std::lock_guard lock(mutex_);
+  return "photo-" + std::to_string(capture_time_us) + "-" + std::to_string(next_serial_++) + ".jpg";
+}
 
 std::filesystem::path PhotoStore::SidecarPath(const std::filesystem::path& photo) {
   std::filesystem::path sidecar = photo;
@@ -59,11 +71,10 @@ kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::Pho
   if (!cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})) {
     throw std::runtime_error("photo: JPEG encoding failed");
   }
-  std::string name;
-  {
-    std::lock_guard lock(mutex_);
-    name = "photo-" + std::to_string(metadata.capture_time_us()) + "-" +
-           std::to_string(next_serial_++) + ".jpg";
+  const std::string name =
+      metadata.file_name().empty() ? NewFileName(metadata.capture_time_us()) : metadata.file_name();
+  if (name.find('/') != std::string::npos || name.starts_with('.')) {
+    throw std::runtime_error("photo: invalid file name '" + name + "'");
   }
   metadata.set_file_name(name);
   metadata.set_width_px(static_cast<std::uint32_t>(image.cols));
@@ -86,6 +97,10 @@ kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::Pho
   } catch (...) {
     std::filesystem::remove(path, ec);  // a photo without its metadata is not kept
     throw;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    ++count_;
   }
   if (jpeg) *jpeg = bytes;
   return metadata;
@@ -122,6 +137,9 @@ std::string PhotoStore::ReadFile(const std::string& file_name) const {
   return ReadAll(dir_ / file_name);
 }
 
-std::uint64_t PhotoStore::count() const { return ListSince(0).size(); }
+std::uint64_t PhotoStore::count() const {
+  std::lock_guard lock(mutex_);
+  return count_;
+}
 
 }  // namespace kapfix::agent

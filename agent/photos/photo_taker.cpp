@@ -11,6 +11,9 @@ namespace {
 // Photos queued for the disk at most; beyond this the disk is too slow and a photo is refused
 // (logged) rather than memory growing.
 constexpr std::size_t kMaxQueuedPhotos = 8;
+// About 3 bytes per pixel is more than a JPEG at quality 95 ever needs; the store keeps room
+// for twice this free.
+constexpr std::uintmax_t kRoughPhotoBytes = std::uintmax_t{3} * 1024 * 1024;
 
 std::int64_t WallClockUs() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -32,17 +35,18 @@ PhotoTaker::~PhotoTaker() {
   thread_.join();
 }
 
-bool PhotoTaker::Request(const std::string& note, std::string* error) {
-  // About 3 bytes per pixel is more than a JPEG at quality 95 ever needs.
-  constexpr std::uintmax_t kRoughPhotoBytes = std::uintmax_t{3} * 1024 * 1024;
+bool PhotoTaker::Request(const std::string& note, std::string* error, std::string* file_name) {
   if (!store_.CheckWritable(kRoughPhotoBytes, error)) return false;
   std::lock_guard lock(mutex_);
-  if (jobs_.size() >= kMaxQueuedPhotos) {
-    if (error)
-      *error = "photo refused: " + std::to_string(jobs_.size()) + " photos still being written";
+  if (jobs_.size() + requested_.size() >= kMaxQueuedPhotos) {
+    if (error) {
+      *error = "photo refused: " + std::to_string(jobs_.size() + requested_.size()) +
+               " photos still being taken or written";
+    }
     return false;
   }
-  requested_note_ = note;
+  requested_.push_back(Requested{note, store_.NewFileName(WallClockUs())});
+  if (file_name) *file_name = requested_.back().file_name;
   return true;
 }
 
@@ -67,19 +71,20 @@ std::vector<std::string> PhotoTaker::Resend(std::int64_t since_us) {
 
 void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcome*/,
                         const TelemetryRecord& record) {
-  std::optional<std::string> note;
+  std::vector<Requested> photos;
   {
     std::lock_guard lock(mutex_);
-    std::swap(note, requested_note_);
-    if (!note && interval_s_ > 0) {
+    std::swap(photos, requested_);
+    if (photos.empty() && interval_s_ > 0) {
       const auto period_us = static_cast<std::int64_t>(std::llround(interval_s_ * 1e6));
       if (!last_auto_us_ || frame.capture_time_us - *last_auto_us_ >= period_us) {
-        if (last_auto_us_) note = "every " + std::to_string(interval_s_) + " s";
+        if (last_auto_us_) photos.push_back({"every " + std::to_string(interval_s_) + " s", ""});
         last_auto_us_ = frame.capture_time_us;
       }
     }
-    if (!note) return;
-    if (jobs_.size() >= kMaxQueuedPhotos) {
+    if (photos.empty()) return;
+    // Requests were bounded with the queue when made; only interval photos can overflow it.
+    if (jobs_.size() + photos.size() > kMaxQueuedPhotos && photos.front().file_name.empty()) {
       ++failed_;
       spdlog::error("photo of frame {} dropped: the disk is not keeping up", frame.index);
       return;
@@ -99,10 +104,16 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcom
   metadata.set_slice(static_cast<std::uint32_t>(record.slice));
   metadata.set_lens_profile(lens_ ? lens_() : std::string());
   metadata.set_confidence(static_cast<float>(record.confidence));
-  Job job{frame.image.clone(), std::move(metadata), {}};
+  // cv::Mat copies share one pixel buffer: one clone for all photos of this frame.
+  const cv::Mat image = frame.image.clone();
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back(std::move(job));
+    for (Requested& photo : photos) {
+      Job job{image, metadata, {}};
+      job.metadata.set_note(std::move(photo.note));
+      job.metadata.set_file_name(std::move(photo.file_name));
+      jobs_.push_back(std::move(job));
+    }
   }
   wake_.notify_one();
 }
@@ -152,6 +163,17 @@ void PhotoTaker::WriterThread() {
         }
       }
     } else {
+      std::string why;
+      // The reserve again, here, for every photo: interval photos are not requested through
+      // Request(), and the disk may have filled since.
+      if (!store_.CheckWritable(kRoughPhotoBytes, &why)) {
+        ++failed_;
+        if (!reserve_refusal_logged_) spdlog::error("photo not saved: {}", why);
+        reserve_refusal_logged_ = true;
+        lock.lock();
+        continue;
+      }
+      reserve_refusal_logged_ = false;
       try {
         std::string bytes;
         const kapfix::v1::PhotoMetadata saved = store_.Save(job.image, job.metadata, &bytes);

@@ -20,7 +20,9 @@ namespace kapfix::agent {
 // Takes the stabilised photos (SPEC §4): on command, or every N seconds of camera time. The
 // control thread only copies the frame; a writer thread stores it (PhotoStore: disk first),
 // then offers it to the station as Photo chunks. Photos taken while the link is down stay on
-// disk and are sent again on request (Resend).
+// disk and are sent again on request (Resend). Each request is one photo, also several in one
+// frame, stored with its note; interval photos keep the same free-space reserve as commanded
+// ones (checked by the writer before each photo).
 class PhotoTaker : public StepObserver {
  public:
   // [bytes] each Photo message carries at most this much of the file, well under the
@@ -36,8 +38,9 @@ class PhotoTaker : public StepObserver {
   void OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
               const TelemetryRecord& record) override;
 
-  // Any thread. A photo of the next frame; false (and why) when the store cannot take one now.
-  bool Request(const std::string& note, std::string* error);
+  // Any thread. A photo of the next frame, stored under the name returned in `file_name`
+  // (optional) with `note`; false (and why) when the store cannot take one now.
+  bool Request(const std::string& note, std::string* error, std::string* file_name = nullptr);
   void SetInterval(double seconds);  // [s] 0 = off
   // Publishes again every stored photo taken at or after `since_us`; returns their file
   // names, oldest first. They are listed now and sent by the writer thread, so the names are
@@ -67,7 +70,12 @@ class PhotoTaker : public StepObserver {
   std::condition_variable wake_;
   std::deque<Job> jobs_;
   bool stop_ = false;
-  std::optional<std::string> requested_note_;
+  struct Requested {
+    std::string note;
+    std::string file_name;
+  };
+  std::vector<Requested> requested_;     // for the next frame; with jobs_, at most kMaxQueuedPhotos
+  bool reserve_refusal_logged_ = false;  // writer thread: one line per disk-full episode
   double interval_s_ = 0;
   std::optional<std::int64_t> last_auto_us_;  // control thread only
   std::atomic<std::uint64_t> saved_{0};

@@ -14,15 +14,18 @@ constexpr std::string_view kCommandTopic = "command";
 
 }  // namespace
 
-CommandIntake::CommandIntake(AgentControl& control, std::string agent_id, CommandLimits limits)
-    : control_(control), agent_id_(std::move(agent_id)), validator_(limits) {}
+CommandIntake::CommandIntake(AgentControl& control, std::string agent_id, CommandLimits limits,
+                             const std::optional<ReplayWindowOptions>& replay)
+    : control_(control), agent_id_(std::move(agent_id)), validator_(limits) {
+  if (replay) replay_ = std::make_unique<ReplayWindow>(*replay, kapfix::v1::NowMicros());
+}
 
 CommandIntake::Outcome CommandIntake::Answer(std::string_view sender,
                                              std::optional<std::string_view> topic,
-                                             std::string_view payload) {
+                                             std::string_view payload, std::string_view station) {
   Outcome outcome;
   Command command;
-  outcome.reply = Check(sender, topic, payload, command, outcome.station_heard);
+  outcome.reply = Check(sender, topic, payload, station, command, outcome.station_heard);
   outcome.command_sequence = command.header().sequence();
   if (outcome.reply.error() != kapfix::v1::ERROR_CODE_UNSPECIFIED) return outcome;
   try {
@@ -42,7 +45,8 @@ CommandIntake::Outcome CommandIntake::Answer(std::string_view sender,
 // Everything before Execute: decoding, addressing, replay, ranges. An error reply, or a reply
 // with error UNSPECIFIED when the command may go on; `command` holds what could be read.
 Reply CommandIntake::Check(std::string_view sender, std::optional<std::string_view> topic,
-                           std::string_view payload, Command& command, bool& station_heard) {
+                           std::string_view payload, std::string_view station, Command& command,
+                           bool& station_heard) {
   Reply reply;
   std::string error;
   ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
@@ -71,7 +75,9 @@ Reply CommandIntake::Check(std::string_view sender, std::optional<std::string_vi
                      ", this is agent '" + agent_id_ + "'");
     return reply;
   }
-  if (!guard_.Accept(sender, command.header().sequence(), &error)) {
+  if (!guard_.Accept(sender, command.header().sequence(), &error) ||
+      (replay_ && !replay_->Accept(station, command.header().send_time_us(),
+                                   command.header().sequence(), kapfix::v1::NowMicros(), &error))) {
     reply.set_error(kapfix::v1::ERROR_CODE_STALE_SEQUENCE);
     reply.set_reason(error);
     return reply;

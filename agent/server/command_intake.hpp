@@ -7,12 +7,14 @@
 // tests/fuzz feed it arbitrary bytes. Not thread-safe: one owner (the server thread).
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "agent/server/agent_control.hpp"
 #include "agent/server/command_validator.hpp"
+#include "agent/server/replay_window.hpp"
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
 
@@ -33,25 +35,30 @@ class CommandIntake {
 
   // `control` must outlive the intake. `agent_id`: commands addressed to another agent are
   // refused (an empty header.agent_id addresses any).
-  CommandIntake(AgentControl& control, std::string agent_id, CommandLimits limits = {});
+  // `replay`: refuse commands replayed on another connection or outside the clock window
+  // (ReplayWindow); unset: per-connection sequence numbers only.
+  CommandIntake(AgentControl& control, std::string agent_id, CommandLimits limits = {},
+                const std::optional<ReplayWindowOptions>& replay = std::nullopt);
 
   // Answers one request. `sender` identifies the station reliably (ROUTER routing id or CURVE
   // key): sequence numbers are checked per sender. `topic` is the request's topic frame when
   // it had one ("command" is the only one accepted); without one the payload is a command.
-  // Never throws for anything in the request; an exception from AgentControl becomes an
-  // ERROR_CODE_INTERNAL reply.
+  // `station` names the station across connections (its CURVE key or name; empty for a
+  // plain station) for the replay window. Never throws for anything in the request; an
+  // exception from AgentControl becomes an ERROR_CODE_INTERNAL reply.
   Outcome Answer(std::string_view sender, std::optional<std::string_view> topic,
-                 std::string_view payload);
+                 std::string_view payload, std::string_view station = {});
 
  private:
   kapfix::v1::Reply Check(std::string_view sender, std::optional<std::string_view> topic,
-                          std::string_view payload, kapfix::v1::Command& command,
-                          bool& station_heard);
+                          std::string_view payload, std::string_view station,
+                          kapfix::v1::Command& command, bool& station_heard);
 
   AgentControl& control_;
   const std::string agent_id_;
   const CommandValidator validator_;
   kapfix::v1::SequenceGuard guard_;
+  std::unique_ptr<ReplayWindow> replay_;  // null: off
 };
 
 }  // namespace kapfix::agent

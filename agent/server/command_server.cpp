@@ -13,6 +13,9 @@
 #include <zmq.hpp>
 
 #include "agent/server/command_intake.hpp"
+#include "agent/server/connection_monitor.hpp"
+#include "agent/server/link_endpoint.hpp"
+#include "agent/server/request_frames.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "agent/server/whole_message_receive.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
@@ -24,12 +27,19 @@ using kapfix::v1::Reply;
 
 // A request has at most routing id, delimiter, topic and message; anything longer is
 // malformed, and its extra frames are read and discarded rather than kept in memory.
-constexpr std::size_t kMaxFramesKept = 4;
+constexpr std::size_t kMaxFramesKept = 1 + kRequestFramesKept;
 
 constexpr std::string_view kHeartbeatTopic = "heartbeat";
 constexpr std::string_view kReplyTopic = "reply";
 
 std::string_view View(const zmq::message_t& frame) { return frame.to_string_view(); }
+
+// The station across connections: with CurveZMQ, the name (or key) the ZAP handler gave its
+// key; a plain station has none that it could not choose itself.
+std::string StationOf(const zmq::message_t& frame) {
+  const char* user = zmq_msg_gets(frame.handle(), "User-Id");
+  return user != nullptr ? std::string(user) : std::string();
+}
 
 // One request as it arrived: the frames kept and how many there were in all.
 struct Request {
@@ -49,7 +59,7 @@ struct Envelope {
 
 struct CommandServer::Impl {
   Impl(AgentControl& agent, CommandServerOptions opts)
-      : options(std::move(opts)), intake(agent, options.agent_id, options.limits) {}
+      : options(std::move(opts)), intake(agent, options.agent_id, options.limits, options.replay) {}
 
   void Run(std::promise<std::string> bound);
   void Serve(zmq::socket_t& socket);
@@ -65,7 +75,8 @@ struct CommandServer::Impl {
   CommandIntake intake;  // owned by the server thread
 
   std::unique_ptr<zmq::context_t> context;
-  std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
+  std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
+  std::unique_ptr<ConnectionMonitor> monitor;  // made by the socket thread
   std::thread thread;
 
   std::atomic<std::uint64_t> commands_ok{0};
@@ -88,12 +99,22 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
     socket.emplace(*context, zmq::socket_type::router);
     socket->set(zmq::sockopt::linger, 0);  // Stop() must not wait for replies to gone peers
     socket->set(zmq::sockopt::maxmsgsize, options.transport_limit_bytes);
+    socket->set(zmq::sockopt::handshake_ivl, static_cast<int>(options.handshake_timeout.count()));
     socket->set(zmq::sockopt::heartbeat_ivl,
                 static_cast<int>(options.zmtp_heartbeat_interval.count()));
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
     if (options.curve) RequireCurve(*socket, *options.curve);
-    socket->bind(options.bind_endpoint);
+    monitor = std::make_unique<ConnectionMonitor>(
+        "command server", ConnectionMonitorOptions{.max_connections = options.max_connections});
+    monitor->Start(*context, *socket);
+    std::string why;
+    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(options.bind_endpoint, &why);
+    if (!endpoint) {
+      bound.set_exception(std::make_exception_ptr(std::runtime_error("command server: " + why)));
+      return;
+    }
+    socket->bind(endpoint->canonical);
     bound.set_value(socket->get(zmq::sockopt::last_endpoint));
   } catch (const zmq::error_t& error) {
     bound.set_exception(std::make_exception_ptr(std::runtime_error(
@@ -123,24 +144,18 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
 }
 
 void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) {
+  // frames[0] is the routing id.
+  std::vector<std::string_view> kept;
+  for (std::size_t i = 1; i < request.frames.size(); ++i) kept.push_back(View(request.frames[i]));
+  const RequestFrames frames = ParseRequestFrames(kept, request.frame_count - 1);
   Envelope envelope;
-  std::size_t next = 1;  // frames[0] is the routing id
-  if (request.frames.size() > next && request.frames[next].size() == 0) {
-    envelope.delimiter = true;
-    ++next;
-  }
-  const std::size_t parts = request.frame_count - next;
-  if (parts == 2) {
-    envelope.topic = request.frames[next].to_string();
-    envelope.payload = View(request.frames[next + 1]);
-  } else if (parts == 1) {
-    envelope.payload = View(request.frames[next]);
-  } else {
+  envelope.delimiter = frames.delimiter;
+  envelope.topic = frames.topic;
+  envelope.payload = frames.payload;
+  if (!frames.error.empty()) {
     Reply reply;
     reply.set_error(kapfix::v1::ERROR_CODE_MALFORMED);
-    reply.set_reason("malformed request: expected [topic,] message after the routing id" +
-                     std::string(envelope.delimiter ? " and the empty delimiter" : "") + ", got " +
-                     std::to_string(parts) + " frames");
+    reply.set_reason(frames.error);
     SendReply(socket, request, envelope, std::move(reply), 0);
     return;
   }
@@ -154,8 +169,8 @@ void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) 
 void CommandServer::Impl::HandleCommand(zmq::socket_t& socket, const Request& request,
                                         const Envelope& envelope) {
   // The routing id identifies the station: sequence numbers are checked per connection.
-  CommandIntake::Outcome outcome =
-      intake.Answer(View(request.frames[0]), envelope.topic, envelope.payload);
+  CommandIntake::Outcome outcome = intake.Answer(
+      View(request.frames[0]), envelope.topic, envelope.payload, StationOf(request.frames.back()));
   if (outcome.station_heard) last_station_heard_us.store(request.received_us);
   SendReply(socket, request, envelope, std::move(outcome.reply), outcome.command_sequence);
 }

@@ -18,6 +18,7 @@
 #include "agent/server/agent_control.hpp"
 #include "agent/server/command_validator.hpp"
 #include "agent/server/curve_server_keys.hpp"
+#include "agent/server/replay_window.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 
 namespace kapfix::agent {
@@ -35,7 +36,16 @@ struct CommandServerOptions {
   // closing its TCP connection (WiFi gone) is dropped after heartbeat_timeout.
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{3000};
+  // [ms] ZMQ_HANDSHAKE_IVL: a connection that has not completed its ZMTP (and CurveZMQ)
+  // handshake within this is closed (libzmq's default keeps a silent one 30 s), so silent
+  // connections cannot hold the agent's file descriptors.
+  std::chrono::milliseconds handshake_timeout{2000};
   CommandLimits limits;
+  // Replay protection across connections (ReplayWindow); unset: per connection only.
+  std::optional<ReplayWindowOptions> replay = ReplayWindowOptions{};
+  // [count] connections at once; one accepted beyond this is closed at once (keep it under
+  // the open-file limit, with room for the agent's own files).
+  std::size_t max_connections = 4096;
   // CurveZMQ: encrypt every connection and accept only the listed stations. Unset: plain.
   std::optional<CurveServerKeys> curve;
 };

@@ -21,7 +21,8 @@ void StopSocketThread(Impl* impl) {
   if (!impl->context) return;
   impl->context->shutdown();
   if (impl->thread.joinable()) impl->thread.join();
-  impl->zap.reset();  // joins its thread
+  impl->zap.reset();      // joins its thread
+  impl->monitor.reset();  // joins its thread
   impl->context.reset();
 }
 

@@ -17,6 +17,8 @@
 #include <utility>
 #include <zmq.hpp>
 
+#include "agent/server/connection_monitor.hpp"
+#include "agent/server/link_endpoint.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
@@ -77,7 +79,8 @@ struct StreamPublisher::Impl {
   bool stopping = false;
 
   std::unique_ptr<zmq::context_t> context;
-  std::unique_ptr<ZapHandler> zap;  // with CurveZMQ keys only
+  std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
+  std::unique_ptr<ConnectionMonitor> monitor;  // made by the socket thread
   std::thread thread;
 
   std::atomic<std::uint64_t> telemetry_sent{0};
@@ -99,15 +102,27 @@ void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
   try {
     socket.emplace(*context, zmq::socket_type::pub);
     socket->set(zmq::sockopt::linger, 0);
-    // A full subscriber queue makes send() fail with EAGAIN instead of dropping silently.
-    socket->set(zmq::sockopt::xpub_nodrop, true);
+    // No XPUB_NODROP: with it, one subscriber that never reads stops the stream for all.
+    // Without it, a full subscriber queue drops that subscriber's copy only.
     socket->set(zmq::sockopt::sndhwm, options.send_high_water_mark);
+    // Subscriptions are messages from the peer: bounded like any other (issue 15, item 1).
+    socket->set(zmq::sockopt::maxmsgsize, options.max_subscription_bytes);
+    socket->set(zmq::sockopt::handshake_ivl, static_cast<int>(options.handshake_timeout.count()));
     socket->set(zmq::sockopt::heartbeat_ivl,
                 static_cast<int>(options.zmtp_heartbeat_interval.count()));
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
     if (options.curve) RequireCurve(*socket, *options.curve);
-    socket->bind(options.bind_endpoint);
+    monitor = std::make_unique<ConnectionMonitor>(
+        "stream publisher", ConnectionMonitorOptions{.max_connections = options.max_connections});
+    monitor->Start(*context, *socket);
+    std::string why;
+    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(options.bind_endpoint, &why);
+    if (!endpoint) {
+      bound.set_exception(std::make_exception_ptr(std::runtime_error("stream publisher: " + why)));
+      return;
+    }
+    socket->bind(endpoint->canonical);
     bound.set_value(socket->get(zmq::sockopt::last_endpoint));
   } catch (const zmq::error_t& error) {
     bound.set_exception(std::make_exception_ptr(std::runtime_error(

@@ -11,8 +11,15 @@
 // - Video ("video"): only the latest frame waits; a newer one replaces it (counted as a
 //   stale drop), and at most one is sent per video_min_interval.
 // - Everything else: a FIFO bounded in messages and bytes. A full queue refuses the new
-//   message and counts it; ZeroMQ's own high-water mark never drops silently (XPUB_NODROP):
-//   a message it cannot take yet stays queued here and is retried.
+//   message and counts it.
+// - Per-subscriber isolation (issue 15): each subscriber has its own ZeroMQ queue of
+//   send_high_water_mark messages; a subscriber that does not read loses its own messages once
+//   its queue is full, never anyone else's (no XPUB_NODROP). It is told by the gap in each
+//   topic's header.sequence. libzmq does not report which subscriber dropped, so the count
+//   is per topic on the station's side, not here.
+// - What a subscriber sends is bounded: ZMQ_MAXMSGSIZE of max_subscription_bytes (a
+//   subscription is a message to the publisher; libzmq builds one trie node per byte of it),
+//   and a peer that does not finish its handshake within handshake_timeout is dropped.
 // - A Heartbeat is published every heartbeat_interval.
 
 #include <google/protobuf/message.h>
@@ -38,12 +45,23 @@ struct StreamPublisherOptions {
   std::chrono::milliseconds heartbeat_interval{1000};
   std::chrono::microseconds video_min_interval{0};  // [µs] 1 / largest video frame rate
   int send_high_water_mark = 1000;                  // [messages] per subscriber, inside ZeroMQ
+  // [bytes] ZMQ_MAXMSGSIZE, the longest message a subscriber may send: a larger one drops its
+  // connection before anything is allocated for it. It bounds a subscription (topics are at
+  // most a dozen characters) and must leave room for the CurveZMQ handshake's commands (the
+  // largest, INITIATE, is a few hundred bytes), to which libzmq applies the same limit.
+  std::int64_t max_subscription_bytes = 1024;
+  // [ms] ZMQ_HANDSHAKE_IVL: a connection that has not completed its ZMTP (and CurveZMQ)
+  // handshake within this is closed, so silent connections cannot hold file descriptors.
+  std::chrono::milliseconds handshake_timeout{2000};
   // [ms] ZeroMQ heartbeats (ZMTP PING): a subscriber that vanished without closing its TCP
-  // connection is dropped, so it stops holding back the others (XPUB_NODROP). The timeout is
-  // long because a subscriber answers a PING only once it has read everything queued before
-  // it: a slow but live station behind a backlog must not be cut off.
+  // connection is dropped, and its queue freed. The timeout is long because a subscriber
+  // answers a PING only once it has read everything queued before it: a slow but live
+  // station behind a backlog must not be cut off.
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{10000};
+  // [count] connections at once; one accepted beyond this is closed at once (keep it under
+  // the open-file limit, with room for the agent's own files).
+  std::size_t max_connections = 4096;
   // CurveZMQ: encrypt every connection and let only the listed stations subscribe. Unset:
   // plain.
   std::optional<CurveServerKeys> curve;

@@ -22,8 +22,9 @@ constexpr std::size_t kCurveKeyBytes = 32;
 // ZMQ_ZAP_ENFORCE_DOMAIN: in zmq.h only under the draft API, but the library takes it. Without
 // it, libzmq lets a CURVE handshake through when no ZAP handler answers.
 constexpr int kZapEnforceDomainOption = 93;
-// A station with a wrong key retries every reconnect interval; one log line per key and
-// address per this period is enough to diagnose it.
+// A station with a wrong key retries every reconnect interval, and a hostile peer can try a
+// fresh key per connection: one log line per this period in all, whatever the key or address
+// (issue 15, item 11), naming the latest refusal and how many were not logged.
 constexpr std::chrono::seconds kRefusalLogPeriod{10};
 
 // ZAP request frames (RFC 27): version, request id, domain, address, identity, mechanism,
@@ -122,7 +123,8 @@ bool ZapHandler::Decide(const std::vector<zmq::message_t>& request, std::string*
 
 void ZapHandler::Serve(zmq::socket_t& socket) {
   using Clock = std::chrono::steady_clock;
-  std::unordered_map<std::string, Clock::time_point> last_logged;  // key+address → when
+  Clock::time_point last_logged{};
+  std::uint64_t not_logged = 0;  // refusals since the last line
   while (true) {
     std::vector<zmq::message_t> request;
     try {
@@ -138,12 +140,17 @@ void ZapHandler::Serve(zmq::socket_t& socket) {
     (ok ? accepted_ : refused_).fetch_add(1);
     const std::string address = request.size() > kAddress ? request[kAddress].to_string() : "";
     if (!ok) {
-      auto& logged = last_logged[why + address];
-      if (Clock::now() - logged >= kRefusalLogPeriod) {
-        spdlog::warn("{}: refused a connection from {}: {}", what_, address, why);
-        logged = Clock::now();
+      if (Clock::now() - last_logged >= kRefusalLogPeriod) {
+        spdlog::warn("{}: refused a connection from {}: {}{}", what_, address, why,
+                     not_logged == 0
+                         ? std::string()
+                         : " (and " + std::to_string(not_logged) + " other refusals in the last " +
+                               std::to_string(kRefusalLogPeriod.count()) + " s)");
+        last_logged = Clock::now();
+        not_logged = 0;
+      } else {
+        ++not_logged;
       }
-      if (last_logged.size() > 1000) last_logged.clear();  // bounded under a key-spraying peer
     }
     const std::string request_id =
         request.size() > kRequestId ? request[kRequestId].to_string() : "";

@@ -137,3 +137,33 @@ TEST_F(CommandCorpusReplayTest, BadSeedsAreRefused) {
 
 }  // namespace
 }  // namespace kapfix::fuzz
+
+namespace kapfix::fuzz {
+namespace {
+
+// The multipart target's input format, for a few requests built by hand.
+std::vector<std::uint8_t> Frames(const std::vector<std::string>& frames) {
+  std::vector<std::uint8_t> input;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i + 1 < frames.size()) input.push_back(static_cast<std::uint8_t>(frames[i].size()));
+    input.insert(input.end(), frames[i].begin(), frames[i].end());
+  }
+  return input;
+}
+
+TEST(MultipartRequestTest, RequestsOfEveryShapeKeepTheInvariants) {
+  const std::vector<std::vector<std::string>> shapes = {{"", "command", "x"},
+                                                        {"command", "x"},
+                                                        {"x"},
+                                                        {"", "a", "b", "c"},
+                                                        {"a", "b", "c", "d", "e", "f", "g", "h"}};
+  for (const auto& shape : shapes) {
+    const std::vector<std::uint8_t> input = Frames(shape);
+    EXPECT_EQ(FuzzMultipartRequest(input.data(), input.size()), shape.size());
+  }
+  std::vector<std::uint8_t> many(2000, 0);  // 2,000 one-byte frames: refused, not kept
+  EXPECT_EQ(FuzzMultipartRequest(many.data(), many.size()), 2000U);
+}
+
+}  // namespace
+}  // namespace kapfix::fuzz

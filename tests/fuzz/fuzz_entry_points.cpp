@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "agent/server/command_intake.hpp"
+#include "agent/server/request_frames.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "tests/fuzz/executed_command_check.hpp"
 #include "tests/fuzz/invariant.hpp"
@@ -152,6 +153,35 @@ ErrorCode FuzzCommand(const std::uint8_t* data, std::size_t size) {
   Require(!first.station_heard || replay.reply.error() == kapfix::v1::ERROR_CODE_STALE_SEQUENCE,
           "a replayed command is refused as stale");
   return first.reply.error();
+}
+
+std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::string_view> kept;
+  std::size_t count = 0;
+  std::size_t at = 0;
+  while (at < size) {
+    const std::size_t length = data[at];
+    const bool last = at + 1 + length >= size;
+    const std::string_view frame =
+        last ? Bytes(data + at, size - at) : Bytes(data + at + 1, length);
+    if (kept.size() < kapfix::agent::kRequestFramesKept) kept.push_back(frame);
+    ++count;
+    at = last ? size : at + 1 + length;
+  }
+  const kapfix::agent::RequestFrames frames = kapfix::agent::ParseRequestFrames(kept, count);
+  const std::size_t parts = count - (frames.delimiter ? 1U : 0U);
+  Require(frames.error.empty() == (parts == 1 || parts == 2),
+          "exactly [delimiter,] [topic,] message is accepted");
+  if (!frames.error.empty()) {
+    Require(frames.error.find(std::to_string(parts) + " frames") != std::string::npos,
+            "a refused request names its frame count");
+    return count;
+  }
+  kapfix::testing::FakeAgentControl control;
+  kapfix::agent::CommandIntake intake(control, kAgentId);
+  const auto outcome = intake.Answer(kStation, frames.topic, frames.payload);
+  RequireWellFormed(outcome.reply, outcome.command_sequence);
+  return count;
 }
 
 void SilenceProtobufLogs() { google::protobuf::SetLogHandler(nullptr); }

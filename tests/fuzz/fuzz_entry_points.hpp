@@ -31,6 +31,14 @@ bool FuzzStreamMessage(const std::uint8_t* data, std::size_t size);
 // reply's error: ERROR_CODE_UNSPECIFIED when the command was executed.
 kapfix::v1::ErrorCode FuzzCommand(const std::uint8_t* data, std::size_t size);
 
+// The agent receiving one multipart request (issue 15): the input is split into frames, each
+// a length byte L and L bytes, the rest of the input the last frame; the frames go through
+// ParseRequestFrames as the server keeps them (at most kRequestFramesKept, the rest only
+// counted), and an accepted envelope's payload to CommandIntake. Checks that only [delimiter,]
+// [topic,] message is accepted, that a refusal names the frame count, and that the reply is
+// well-formed. Returns the number of frames.
+std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size);
+
 // Drops protobuf's log lines (e.g. one per string field with invalid UTF-8), which would
 // flood a fuzzer's output and slow it down.
 void SilenceProtobufLogs();

@@ -3,7 +3,9 @@
 #include <google/protobuf/unknown_field_set.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <string>
 #include <thread>
 
@@ -144,9 +146,10 @@ TEST(StreamPublisherTest, QueueIsBoundedInBytesToo) {
   EXPECT_EQ(publisher.counters().other_dropped, 1U);
 }
 
-TEST(StreamPublisherTest, TelemetryIsNotLostWhenASubscriberFallsBehind) {
-  // Small high-water marks on both sides and messages far larger than the TCP buffers: ZeroMQ
-  // PUB would drop; with XPUB_NODROP the messages wait in the publisher's queue instead.
+TEST(StreamPublisherTest, SubscriberThatFallsBehindLosesItsOwnMessagesAndSeesTheGap) {
+  // Small high-water marks on both sides and messages far larger than the TCP buffers: the
+  // subscriber's own ZeroMQ queue overflows, and what it gets shows the loss as a gap in
+  // header.sequence (issue 15, item 6: it is told; nobody else is held back).
   auto options = TestPublisherOptions();
   options.send_high_water_mark = 2;
   StreamPublisher publisher(options);
@@ -161,16 +164,65 @@ TEST(StreamPublisherTest, TelemetryIsNotLostWhenASubscriberFallsBehind) {
         ->AddLengthDelimited(1000, std::string(100'000, 'p'));
     ASSERT_TRUE(publisher.Publish(telemetry));
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the pipes fill up
-  for (std::uint64_t i = 0; i < kCount; ++i) {
-    const auto bytes = subscriber.Next("telemetry");
-    ASSERT_TRUE(bytes.has_value())
-        << "telemetry " << i << " lost; " << publisher.counters().telemetry_sent << " sent";
+  ASSERT_TRUE(WaitFor([&] { return publisher.counters().telemetry_sent == kCount; }));
+  std::uint64_t received_count = 0;
+  std::uint64_t last_sequence = 0;
+  bool gap_seen = false;
+  while (const auto bytes = subscriber.Next("telemetry", std::chrono::milliseconds(500))) {
     kapfix::v1::Telemetry received;
     ASSERT_TRUE(received.ParseFromString(*bytes));
-    ASSERT_EQ(received.frame_number(), i);
+    if (last_sequence != 0 && received.header().sequence() > last_sequence + 1) gap_seen = true;
+    last_sequence = received.header().sequence();
+    ++received_count;
   }
-  EXPECT_EQ(publisher.counters().telemetry_dropped, 0U);
+  EXPECT_LT(received_count, kCount);
+  EXPECT_TRUE(gap_seen);
+}
+
+// Issue 15, item 6: a subscriber that keeps its connection alive but never reads held every
+// station's telemetry back for 43 s (XPUB_NODROP). Each telemetry message must reach the
+// reading station while the stalled one's queue is full of large messages.
+TEST(StreamPublisherTest, StalledSubscriberDoesNotHoldBackAnotherStationsTelemetry) {
+  auto options = TestPublisherOptions();
+  options.send_high_water_mark = 100;
+  StreamPublisher publisher(options);
+  const std::string endpoint = publisher.Start();
+  RawSubscriber stalled(endpoint, {"log"}, /*receive_high_water_mark=*/1);
+  RawSubscriber reader(endpoint, {"telemetry"});
+  ASSERT_TRUE(stalled.Ready());  // reads one heartbeat, then never again
+  ASSERT_TRUE(reader.Ready());
+  // 40 MB of log lines for the stalled one: far beyond its queue and the TCP buffers.
+  constexpr std::uint64_t kRounds = 2000;
+  std::chrono::microseconds worst{0};
+  std::uint64_t missed = 0;       // rounds whose telemetry did not come within 500 ms
+  std::uint64_t consecutive = 0;  // of them in a row: the stream stopped
+  for (std::uint64_t i = 0; i < kRounds; ++i) {
+    kapfix::v1::Log line;
+    line.set_text(std::string(20'000, 'l'));
+    ASSERT_TRUE(publisher.Publish(line));
+    const auto sent = std::chrono::steady_clock::now();
+    ASSERT_TRUE(publisher.Publish(TelemetryOfFrame(i)));
+    const auto bytes = reader.Next("telemetry", std::chrono::milliseconds(500));
+    if (!bytes) {
+      ++missed;
+      ASSERT_LT(++consecutive, 5U)
+          << "telemetry stopped at " << i << "; sent " << publisher.counters().telemetry_sent;
+      continue;
+    }
+    consecutive = 0;
+    worst = std::max(worst, std::chrono::duration_cast<std::chrono::microseconds>(
+                                std::chrono::steady_clock::now() - sent));
+    kapfix::v1::Telemetry received;
+    ASSERT_TRUE(received.ParseFromString(*bytes));
+    EXPECT_LE(received.frame_number(), i);
+  }
+  // libzmq occasionally drops one for the reading station too (its own queue's accounting
+  // lags its reads); a stalled subscriber used to stop the stream for good.
+  EXPECT_LE(missed, kRounds / 100);
+  // A figure, not a check (timing on a loaded machine): the target is under 100 ms.
+  std::printf("behind a stalled subscriber: slowest telemetry %.1f ms, %llu of %llu missed\n",
+              static_cast<double>(worst.count()) / 1000.0, static_cast<unsigned long long>(missed),
+              static_cast<unsigned long long>(kRounds));
 }
 
 TEST(StreamPublisherTest, HeartbeatsArriveEveryInterval) {

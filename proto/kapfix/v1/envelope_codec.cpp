@@ -1,9 +1,11 @@
 #include "kapfix/v1/envelope_codec.hpp"
 
 #include <google/protobuf/descriptor.h>
+#include <google/protobuf/stubs/logging.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <climits>
 #include <cstdio>
@@ -171,6 +173,25 @@ bool DecodeEnvelope(std::string_view topic, std::string_view bytes, Message* out
   }
   return Decode(bytes, out, max_bytes, error, code);
 }
+
+namespace {
+
+std::atomic<std::uint64_t> libprotobuf_lines_dropped{0};
+
+void DropBelowFatal(google::protobuf::LogLevel level, const char* filename, int line,
+                    const std::string& message) {
+  if (level < google::protobuf::LOGLEVEL_FATAL) {
+    libprotobuf_lines_dropped.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  std::fprintf(stderr, "[libprotobuf FATAL %s:%d] %s\n", filename, line, message.c_str());
+}
+
+}  // namespace
+
+void QuietLibprotobufLog() { google::protobuf::SetLogHandler(&DropBelowFatal); }
+
+std::uint64_t LibprotobufLinesDropped() { return libprotobuf_lines_dropped.load(); }
 
 std::int64_t NowMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(

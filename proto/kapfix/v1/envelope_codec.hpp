@@ -61,6 +61,13 @@ bool Decode(std::string_view bytes, google::protobuf::Message* out, std::size_t 
 bool DecodeEnvelope(std::string_view topic, std::string_view bytes, google::protobuf::Message* out,
                     std::size_t max_bytes, std::string* error, ErrorCode* code = nullptr);
 
+// libprotobuf logs every invalid UTF-8 string it parses to stderr, unthrottled, so a peer
+// could flood the log with them; Decode() already refuses such a message as malformed with a
+// reason. This replaces libprotobuf's log handler with one that drops its lines below FATAL
+// and counts them (LibprotobufLinesDropped). Call once at start, before any thread decodes.
+void QuietLibprotobufLog();
+std::uint64_t LibprotobufLinesDropped();
+
 // Now [µs since the Unix epoch] (system clock).
 std::int64_t NowMicros();
 

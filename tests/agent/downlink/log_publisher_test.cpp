@@ -61,6 +61,22 @@ TEST(LogPublisherTest, ALineLoggedWhilePublishingIsNotPublishedAgain) {
   EXPECT_EQ(sink.published, 1);
 }
 
+// Issue 15, item 11: 2,000 refused handshakes were 2,000 Log messages to the station. The
+// limit is global: whatever the logger or text, a burst is cut at the bucket's size.
+TEST(LogPublisherTest, AFloodOfLinesIsCutAtTheBurstWhateverTheirSource) {
+  RecordingStreamSink sink;
+  auto publisher = std::make_shared<LogPublisher>(sink, spdlog::level::info,
+                                                  LogRateLimit{.burst = 20, .lines_per_s = 1});
+  spdlog::logger zap("zap", publisher);
+  spdlog::logger server("server", publisher);
+  for (int i = 0; i < 1000; ++i) {
+    (i % 2 == 0 ? zap : server).warn("refused a connection from key {}", i);
+  }
+  const std::size_t sent = sink.Messages<kapfix::v1::Log>().size();
+  EXPECT_GE(sent, 20U);
+  EXPECT_LE(sent, 25U);  // a few refills while the loop runs on a slow machine
+}
+
 TEST(LogPublisherTest, EverySpdlogLevelHasAProtoLevel) {
   for (const auto level : {spdlog::level::trace, spdlog::level::debug, spdlog::level::info,
                            spdlog::level::warn, spdlog::level::err, spdlog::level::critical}) {

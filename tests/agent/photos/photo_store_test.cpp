@@ -288,4 +288,26 @@ TEST(PhotoStoreTest, SaveWorksAgainOnceTheDiskHasRoom) {
 }
 
 }  // namespace
+// Issue 15, item 5: every command's state read every sidecar (439 ms at 5,000 photos). The
+// count is taken once from the file names, then kept by Save(): proven by a folder emptied
+// behind the store's back, which the count does not notice.
+TEST(PhotoStoreTest, CountIsTakenOnceFromTheNamesThenKeptWithoutReadingTheFolder) {
+  TempDir temp;
+  constexpr int kPhotos = 1000;  // the count is what is checked, not time: 1,000 is enough
+  for (int i = 0; i < kPhotos; ++i) {
+    const std::filesystem::path photo = temp.path() / ("photo-1-" + std::to_string(i) + ".jpg");
+    std::ofstream(photo) << "x";
+    std::ofstream(PhotoStore::SidecarPath(photo)) << "not read";
+  }
+  std::ofstream(temp.path() / "photo-2-1.jpg") << "no sidecar: not a photo";
+  PhotoStore store(temp.path());
+  EXPECT_EQ(store.count(), static_cast<std::uint64_t>(kPhotos));
+  for (const auto& entry : std::filesystem::directory_iterator(temp.path())) {
+    std::filesystem::remove(entry.path());
+  }
+  EXPECT_EQ(store.count(), static_cast<std::uint64_t>(kPhotos));
+  store.Save(NoisePhoto({64, 48}), MetadataAt(1000), nullptr);
+  EXPECT_EQ(store.count(), static_cast<std::uint64_t>(kPhotos) + 1);
+}
+
 }  // namespace kapfix::agent

@@ -4,7 +4,11 @@
 #include "agent/photos/photo_taker.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/mount.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -76,6 +80,60 @@ TEST(PhotoTakerTest, RequestTakesOnlyOnePhoto) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a second one would be late
   EXPECT_EQ(rig.taker.saved(), 1u);
   EXPECT_EQ(rig.store.count(), 1u);
+}
+
+// Issue 15, item 9: five take_photo before one frame were five OK replies and one photo.
+TEST(PhotoTakerTest, FiveRequestsBeforeOneFrameMakeFiveFilesEachWithItsNameAndNote) {
+  Rig rig;
+  std::vector<std::string> names;
+  for (int i = 0; i < 5; ++i) {
+    std::string error;
+    std::string name;
+    ASSERT_TRUE(rig.taker.Request("note " + std::to_string(i), &error, &name)) << error;
+    names.push_back(name);
+  }
+  Step(rig.taker, 0);
+  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 5; }));
+  EXPECT_EQ(rig.taker.saved(), 5u);
+  const std::vector<kapfix::v1::PhotoMetadata> stored = rig.store.ListSince(0);
+  ASSERT_EQ(stored.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_TRUE(std::filesystem::exists(rig.store.dir() / names[i])) << names[i];
+    const auto it = std::find_if(stored.begin(), stored.end(),
+                                 [&](const auto& m) { return m.file_name() == names[i]; });
+    ASSERT_NE(it, stored.end()) << names[i];
+    EXPECT_EQ(it->note(), "note " + std::to_string(i));  // read back from the sidecar
+  }
+}
+
+// Issue 15, item 10: interval photos kept filling a volume that commanded photos were refused
+// on. A 4 MiB tmpfs has less than the reserve (twice about 3 MiB) but room for these photos.
+TEST(PhotoTakerTest, IntervalPhotosKeepTheFreeSpaceReserve) {
+  TempDir temp;
+  const std::filesystem::path small = temp.path() / "small";
+  std::filesystem::create_directory(small);
+  if (::mount("kapfix-test", small.c_str(), "tmpfs", 0, "size=4m") != 0) {
+    GTEST_SKIP() << "cannot mount a tmpfs here (" << std::strerror(errno) << "); needs root";
+  }
+  std::uint64_t saved = 0;
+  std::uint64_t failed = 0;
+  {
+    PhotoStore store(small);
+    RecordingStreamSink sink;
+    PhotoTaker taker(store, sink, nullptr);
+    taker.SetInterval(0.5);
+    for (std::uint64_t i = 0; i < 30; ++i) Step(taker, i);  // 3 s of camera time
+    EXPECT_TRUE(WaitUntil([&] { return taker.saved() + taker.failed() >= 5; }));
+    saved = taker.saved();
+    failed = taker.failed();
+  }
+  std::error_code ec;
+  const std::size_t files =
+      static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(small, ec), {}));
+  ::umount2(small.c_str(), MNT_DETACH);
+  EXPECT_EQ(saved, 0u);
+  EXPECT_GE(failed, 5u);
+  EXPECT_EQ(files, 0u);
 }
 
 TEST(PhotoTakerTest, NoPhotoWithoutARequestOrAnInterval) {

@@ -1,0 +1,96 @@
+#include "agent/server/connection_monitor.hpp"
+
+#include <spdlog/spdlog.h>
+#include <sys/socket.h>
+#include <zmq.h>
+
+#include <cstring>
+#include <utility>
+
+namespace kapfix::agent {
+namespace {
+
+constexpr int kEvents = ZMQ_EVENT_ACCEPTED | ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_CLOSED |
+                        ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                        ZMQ_EVENT_HANDSHAKE_FAILED_AUTH;
+
+}  // namespace
+
+ConnectionMonitor::ConnectionMonitor(std::string what, ConnectionMonitorOptions options)
+    : what_(std::move(what)), options_(options) {}
+
+ConnectionMonitor::~ConnectionMonitor() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void ConnectionMonitor::Start(zmq::context_t& context, zmq::socket_t& socket) {
+  const std::string endpoint = "inproc://kapfix-monitor-" + what_;
+  if (zmq_socket_monitor(socket.handle(), endpoint.c_str(), kEvents) != 0) throw zmq::error_t();
+  zmq::socket_t events(context, zmq::socket_type::pair);
+  events.set(zmq::sockopt::linger, 0);
+  // Wakes once a second to write a due summary when no event comes.
+  events.set(zmq::sockopt::rcvtimeo, 1000);
+  events.connect(endpoint);
+  thread_ = std::thread([this, events = std::move(events)]() mutable { Serve(events); });
+}
+
+ConnectionMonitor::Counters ConnectionMonitor::counters() const {
+  return {accepted_.load(), over_budget_.load(), handshakes_failed_.load()};
+}
+
+void ConnectionMonitor::Serve(zmq::socket_t& events) {
+  using Clock = std::chrono::steady_clock;
+  std::unordered_set<int> open;  // descriptors of the connections now open
+  std::uint64_t failed_unreported = 0;
+  std::uint64_t over_budget_unreported = 0;
+  Clock::time_point last_summary{};
+  while (true) {
+    zmq::message_t event;
+    zmq::message_t address;
+    try {
+      if (events.recv(event)) {
+        (void)events.recv(address);  // second frame: the endpoint
+        std::uint16_t id = 0;
+        std::uint32_t value = 0;  // the descriptor, for ACCEPTED and DISCONNECTED
+        if (event.size() >= 6) {
+          std::memcpy(&id, event.data(), sizeof id);
+          std::memcpy(&value, static_cast<const char*>(event.data()) + 2, sizeof value);
+        }
+        const int fd = static_cast<int>(value);
+        if (id == ZMQ_EVENT_ACCEPTED) {
+          accepted_.fetch_add(1);
+          if (open.size() >= options_.max_connections) {
+            ::shutdown(fd, SHUT_RDWR);
+            over_budget_.fetch_add(1);
+            ++over_budget_unreported;
+          } else {
+            open.insert(fd);
+          }
+        } else if (id == ZMQ_EVENT_DISCONNECTED || id == ZMQ_EVENT_CLOSED) {
+          open.erase(fd);
+        } else if (id == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL ||
+                   id == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL ||
+                   id == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) {
+          handshakes_failed_.fetch_add(1);
+          ++failed_unreported;
+        }
+      }
+    } catch (const zmq::error_t& error) {
+      if (error.num() == ETERM) return;
+    }
+    if ((failed_unreported > 0 || over_budget_unreported > 0) &&
+        Clock::now() - last_summary >= options_.summary_period) {
+      spdlog::warn(
+          "{}: {} handshake(s) refused and {} connection(s) over the budget of {} in the "
+          "last {} s; {} open",
+          what_, failed_unreported, over_budget_unreported, options_.max_connections,
+          std::chrono::duration_cast<std::chrono::seconds>(options_.summary_period).count(),
+          open.size());
+      failed_unreported = 0;
+      over_budget_unreported = 0;
+      last_summary = Clock::now();
+    }
+  }
+}
+
+}  // namespace kapfix::agent
