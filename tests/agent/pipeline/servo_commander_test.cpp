@@ -32,7 +32,10 @@ struct Rig {
     std::string error;
     EXPECT_TRUE(servos->Open(&error)) << error;
     commander = std::make_unique<ServoCommander>(
-        *servos, mutex, ServoCommanderOptions{100, 400, false}, [this] { return now_us; });
+        *servos, mutex,
+        ServoCommanderOptions{
+            .retry_initial_ms = 100, .retry_max_ms = 400, .reopen_in_background = false},
+        [this] { return now_us; });
   }
   void AdvanceMs(int ms) { now_us += std::int64_t{ms} * 1000; }
 };
@@ -147,7 +150,8 @@ TEST(ServoCommanderTest, ASlowReopenRunsBesideTheControlLoopWithoutHoldingItUp) 
                             [&now_us] { return now_us; });
   ASSERT_TRUE(servos.Open(nullptr));
   std::mutex mutex;
-  ServoCommander commander(servos, mutex, ServoCommanderOptions{100, 400, true},
+  ServoCommander commander(servos, mutex,
+                           ServoCommanderOptions{.retry_initial_ms = 100, .retry_max_ms = 400},
                            [&now_us] { return now_us; });
   now_us += 1'000'000;
   commander.Command({2.0, 0.0});
