@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace kapfix::agent {
 
@@ -12,7 +13,7 @@ ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
                                ServoCommanderOptions options, MonotonicClockUs clock)
     : servos_(servos),
       mutex_(mutex),
-      options_(options),
+      options_(std::move(options)),
       clock_(std::move(clock)),
       held_{servos.angle(ServoAxis::kPan), servos.angle(ServoAxis::kTilt)} {}
 
