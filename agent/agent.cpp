@@ -219,18 +219,17 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     ApplyCameraSettings(configured_camera, *source_);
   } else {
     pipeline.camera_open = false;
+    pipeline.camera_error = error;
     spdlog::warn("camera: {}", error);
   }
   if (!servos_->Open(&error)) {
     pipeline.servos_open = false;
+    pipeline.servos_error = error;
     spdlog::warn("servos: {}", error);
   }
   if (simulated_) pipeline.park_wait = [] {};  // simulated time: no wall-clock wait
   notifier_ = std::make_unique<SystemdNotifier>();
   pipeline.on_alive = [notifier = notifier_.get()] { notifier->Alive(); };
-  pipeline.on_status = [notifier = notifier_.get()](const std::string& status) {
-    notifier->Status(status);
-  };
 
   // Before binding: descriptors for many connections plus the photos (issue 15, item 3).
   constexpr std::uint64_t kWantedOpenFiles = 65536;
@@ -295,10 +294,15 @@ Agent::Agent(AgentConfig config, AgentOptions options)
 
   std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
   if (options_.keep_telemetry) observers.push_back(&telemetry_);
-  const bool pipeline_camera_open = pipeline.camera_open;
-  const bool pipeline_servos_open = pipeline.servos_open;
+  // The devices' health, kept by the pipeline, goes to systemctl status and the AgentState.
+  pipeline.on_health = [notifier = notifier_.get(),
+                        state = state_.get()](const DevicesHealth& health) {
+    notifier->Status(StatusLine(health));
+    state->OnDeviceHealth(health);
+  };
   pipeline_ = std::make_unique<Pipeline>(*source_, *servos_, *modes_, std::move(observers),
                                          std::move(pipeline));
+  state_->OnDeviceHealth(pipeline_->health());  // as it is at start
 
   Pipeline* running = pipeline_.get();
   executor_ = std::make_unique<CommandExecutor>(CommandTargets{
@@ -329,9 +333,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   server_ = std::make_unique<CommandServer>(*executor_, server_options);
   stream_endpoint_ = publisher_->Start();
   command_endpoint_ = server_->Start();
-  notifier_->Ready("commands on " + command_endpoint_ + "; camera " +
-                   (pipeline_camera_open ? "open" : "waiting") + ", servos " +
-                   (pipeline_servos_open ? "open" : "waiting"));
+  notifier_->Ready("commands on " + command_endpoint_ + "; " + StatusLine(pipeline_->health()));
 }
 
 Agent::~Agent() {

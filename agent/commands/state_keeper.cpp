@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "agent/commands/settings_messages.hpp"
+#include "agent/downlink/device_health_message.hpp"
 #include "agent/downlink/telemetry_publisher.hpp"
 
 namespace kapfix::agent {
@@ -57,6 +58,8 @@ kapfix::v1::AgentState StateKeeper::StateLocked() const {
   state.set_simulated(simulated_);
   state.set_agent_version(KAPFIX_VERSION);  // the project version, from CMake
   state.set_version(version_);
+  *state.mutable_camera_health() = ToProto(devices_.camera);
+  *state.mutable_servo_health() = ToProto(devices_.servos);
   return state;
 }
 
@@ -110,6 +113,16 @@ bool StateKeeper::RepublishSliceReport() {
   if (!report) return false;
   sink_.Publish(*report);
   return true;
+}
+
+void StateKeeper::OnDeviceHealth(const DevicesHealth& health) {
+  {
+    std::lock_guard lock(mutex_);
+    if (devices_ == health) return;
+    devices_ = health;
+    ChangedLocked();
+  }
+  PublishState();
 }
 
 void StateKeeper::OnModeChanged(AgentMode mode, int slice) {

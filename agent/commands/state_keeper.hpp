@@ -8,6 +8,7 @@
 #include "agent/commands/calibration_store.hpp"
 #include "agent/config/agent_config.hpp"
 #include "agent/modes/mode_events.hpp"
+#include "agent/pipeline/device_health.hpp"
 #include "agent/server/stream_sink.hpp"
 #include "kapfix/v1/state.pb.h"
 
@@ -47,6 +48,10 @@ class StateKeeper : public ModeEvents {
   // never ran.
   bool RepublishSliceReport();
 
+  // The camera's and servos' health (the pipeline's on_health): a change is a new state,
+  // published at once; the same health again changes nothing.
+  void OnDeviceHealth(const DevicesHealth& health);
+
   void OnModeChanged(AgentMode mode, int slice) override;
   void OnSliceReport(const kapfix::v1::SliceReport& report) override;
   void OnPssReport(const kapfix::v1::PssReport& report) override;
@@ -70,6 +75,7 @@ class StateKeeper : public ModeEvents {
   std::optional<kapfix::v1::SliceReport> last_slice_report_;
   std::optional<kapfix::v1::PssReport> last_pss_report_;
   std::optional<kapfix::v1::CalibrationReport> calibration_;
+  DevicesHealth devices_;
   std::uint64_t version_ = 1;    // [count] of the state as it is now
   bool publishing_ = false;      // a thread is in PublishState's loop
   bool publish_wanted_ = false;  // a state was asked for since that thread's last snapshot

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "agent/downlink/device_health_message.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -88,6 +90,8 @@ kapfix::v1::Telemetry TelemetryPublisher::ToMessage(const TelemetryRecord& recor
   t.set_video_frames_dropped(video_dropped);
   t.set_telemetry_dropped(telemetry_dropped);
   t.set_slice(static_cast<std::uint32_t>(record.slice));
+  *t.mutable_camera_health() = ToProto(record.camera_health);
+  *t.mutable_servo_health() = ToProto(record.servo_health);
   return t;
 }
 

@@ -27,8 +27,35 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
       observers_(std::move(observers)),
       options_(std::move(options)),
       commander_(servos_, servo_mutex_,
-                 ServoCommanderOptions{options_.retry_initial_ms, options_.retry_max_ms}) {
-  if (!options_.servos_open) commander_.StartOut();
+                 ServoCommanderOptions{
+                     .retry_initial_ms = options_.retry_initial_ms,
+                     .retry_max_ms = options_.retry_max_ms,
+                     .on_health = [this](const DeviceHealth& health) { SetServoHealth(health); },
+                 }) {
+  if (!options_.camera_open) health_.camera = DeviceHealth::Waiting(options_.camera_error);
+  if (!options_.servos_open) {
+    health_.servos = DeviceHealth::Waiting(options_.servos_error);
+    commander_.StartOut(options_.servos_error);
+  }
+}
+
+DevicesHealth Pipeline::health() const {
+  std::lock_guard lock(health_mutex_);
+  return health_;
+}
+
+void Pipeline::SetCameraHealth(DeviceHealth health) {
+  std::lock_guard lock(health_mutex_);
+  if (health_.camera == health) return;
+  health_.camera = std::move(health);
+  if (options_.on_health) options_.on_health(health_);
+}
+
+void Pipeline::SetServoHealth(DeviceHealth health) {
+  std::lock_guard lock(health_mutex_);
+  if (health_.servos == health) return;
+  health_.servos = std::move(health);
+  if (options_.on_health) options_.on_health(health_);
 }
 
 PipelineStats Pipeline::Run() {
@@ -82,9 +109,7 @@ void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
 }
 
 bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
-  if (options_.on_status) {
-    options_.on_status((at_start ? "waiting for the camera: " : "camera lost: ") + reason);
-  }
+  SetCameraHealth(at_start ? DeviceHealth::Waiting(reason) : DeviceHealth::Lost(reason));
   if (at_start) {
     spdlog::warn(
         "camera not there: {}; waiting for it (retrying with back-off, the servos are "
@@ -108,7 +133,7 @@ bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
       if (options_.on_camera_open) options_.on_camera_open(source_);
       spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0, attempt,
                    source_.Describe());
-      if (options_.on_status) options_.on_status("camera open: " + source_.Describe());
+      SetCameraHealth(DeviceHealth::Ok());
       return true;
     }
     spdlog::warn("camera reconnect attempt {} failed: {}; next in {} ms", attempt, error,
@@ -126,6 +151,7 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
     std::string error;
     if (source_.Open(&error)) {
       if (options_.on_camera_open) options_.on_camera_open(source_);
+      SetCameraHealth(DeviceHealth::Ok());
     } else if (!Reconnect(error, true)) {
       slot_.Close();
       return;
@@ -143,6 +169,7 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
     if (!source_.Grab(&frame, &error)) {
       ++stats->grab_errors;
       if (!options_.reconnect_camera) {
+        SetCameraHealth(DeviceHealth::Lost(error));
         stats->error = error;
         spdlog::error("capture: {}", error);
         break;
@@ -211,6 +238,9 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     record.slice = outcome.slice;
     record.distance = step.match.distance;
     record.reference_frame = outcome.reference_frame;
+    const DevicesHealth devices = health();
+    record.camera_health = devices.camera;
+    record.servo_health = devices.servos;
     if (options_.view_offset) {
       if (const auto offset = options_.view_offset(frame->index)) {
         record.view_offset_x_px = offset->x;

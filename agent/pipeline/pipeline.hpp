@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "agent/capture/frame_source.hpp"
+#include "agent/pipeline/device_health.hpp"
 #include "agent/pipeline/frame_processor.hpp"
 #include "agent/pipeline/latest_frame_slot.hpp"
 #include "agent/pipeline/servo_commander.hpp"
@@ -46,13 +47,18 @@ struct PipelineOptions {
   // servos are not moved before a camera frame arrives and the driver is open.
   bool camera_open = true;
   bool servos_open = true;
+  // Why the camera / the servo driver did not open at start (the health's reason).
+  std::string camera_error;
+  std::string servos_error;
   // Runs on the capture thread after every successful (re)open of the camera (gain, exposure).
   std::function<void(FrameSource&)> on_camera_open;
   // Called on every control step and every reconnect wait: the service manager's watchdog.
   std::function<void()> on_alive;
-  // One line on what the camera is doing ("waiting for the camera: …", "camera lost: …",
-  // "camera open: …"), for the service manager's status (systemctl status).
-  std::function<void(const std::string&)> on_status;
+  // Called on every change of the devices' health (the camera's from the capture thread, the
+  // servos' from the control thread), one call at a time and in the order of the changes: for
+  // the service manager's status and the AgentState. A retry that fails again is no change.
+  // Must not call Pipeline::health() (it runs under the lock that guards it).
+  std::function<void(const DevicesHealth&)> on_health;
   // Between the steps of the final park (one frame period at the rate limit each); default:
   // sleep default_frame_period_s. Simulated time needs no wait.
   std::function<void()> park_wait;
@@ -93,6 +99,9 @@ class Pipeline {
   // From any thread: `change` runs on the capture thread before its next Grab, because camera
   // drivers are not safe to call from two threads.
   void RequestCameraChange(std::function<void(FrameSource&)> change);
+  // From any thread: whether the camera and the servo driver are there now (also carried by
+  // every step's TelemetryRecord).
+  DevicesHealth health() const;
 
  private:
   void CaptureThread(PipelineStats* stats, const std::function<void()>& on_outage);
@@ -100,6 +109,8 @@ class Pipeline {
   bool Reconnect(const std::string& reason, bool at_start);
   void ControlThread(PipelineStats* stats, const std::function<void()>& kick);
   ServoTargets SeenThrough(std::uint64_t index) const;
+  void SetCameraHealth(DeviceHealth health);
+  void SetServoHealth(DeviceHealth health);
 
   FrameSource& source_;
   LimitedServoDriver& servos_;
@@ -110,8 +121,12 @@ class Pipeline {
   std::atomic<bool> stop_{false};
   std::mutex camera_mutex_;
   std::vector<std::function<void(FrameSource&)>> camera_changes_;
-  std::mutex servo_mutex_;    // LimitedServoDriver is not thread-safe: control vs watchdog
-  ServoCommander commander_;  // control thread only
+  std::mutex servo_mutex_;  // LimitedServoDriver is not thread-safe: control vs watchdog
+  // Held while on_health runs, so that two threads' changes are reported in order and the
+  // last report is the health as it is. Changes are rare (a device comes or goes).
+  mutable std::mutex health_mutex_;
+  DevicesHealth health_;
+  ServoCommander commander_;                                      // control thread only
   std::deque<std::pair<std::uint64_t, ServoTargets>> commanded_;  // control thread only
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace kapfix::agent {
 
@@ -12,7 +13,7 @@ ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
                                ServoCommanderOptions options, MonotonicClockUs clock)
     : servos_(servos),
       mutex_(mutex),
-      options_(options),
+      options_(std::move(options)),
       clock_(std::move(clock)),
       held_{servos.angle(ServoAxis::kPan), servos.angle(ServoAxis::kTilt)} {}
 
@@ -44,7 +45,11 @@ ServoTargets ServoCommander::Command(const ServoTargets& targets) {
   return held_;
 }
 
-void ServoCommander::StartOut() {
+void ServoCommander::Report(const DeviceHealth& health) const {
+  if (options_.on_health) options_.on_health(health);
+}
+
+void ServoCommander::StartOut(const std::string& reason) {
   out_ = true;
   out_since_us_ = clock_();
   wait_ms_ = options_.retry_initial_ms;
@@ -53,6 +58,7 @@ void ServoCommander::StartOut() {
   spdlog::warn(
       "servo driver not open at start: opening it with the first camera frame, then "
       "retrying with back-off");
+  Report(DeviceHealth::Waiting(reason));
 }
 
 void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
@@ -63,6 +69,7 @@ void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
   attempts_ = 0;
   ++counters_.outages;
   spdlog::error("servo driver failed: {}; the servos hold, reopening it in {} ms", error, wait_ms_);
+  Report(DeviceHealth::Lost(error));
 }
 
 void ServoCommander::RetryIfDue(std::int64_t now_us) {
@@ -101,6 +108,7 @@ void ServoCommander::FinishReopen(std::int64_t now_us) {
     }
     spdlog::info("servo driver back after {:.1f} s ({} attempts): {}",
                  static_cast<double>(now_us - out_since_us_) * 1e-6, attempts_, servos_.Describe());
+    Report(DeviceHealth::Ok());
     return;
   }
   wait_ms_ = std::min(2 * wait_ms_, options_.retry_max_ms);

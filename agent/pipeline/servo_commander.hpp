@@ -9,10 +9,12 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
 
+#include "agent/pipeline/device_health.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/fixation/fixation_loop.hpp"
 
@@ -25,6 +27,9 @@ struct ServoCommanderOptions {
   // its answer timeout; the USB setup) never holds up the control loop. Off: on the caller's
   // thread, within Command (deterministic, for tests of the back-off).
   bool reopen_in_background = true;
+  // Called when the driver's health changes (out at start, failed, back), on the thread that
+  // called StartOut or Command; not for a retry that fails again.
+  std::function<void(const DeviceHealth&)> on_health;
 };
 
 class ServoCommander {
@@ -47,9 +52,9 @@ class ServoCommander {
   // Returns the angles the servos were last given [deg].
   ServoTargets Command(const ServoTargets& targets);
 
-  // The driver did not open at start: the first Command opens it (then with back-off), and
-  // nothing moves until it is open.
-  void StartOut();
+  // The driver did not open at start (`reason`: why): the first Command opens it (then with
+  // back-off), and nothing moves until it is open.
+  void StartOut(const std::string& reason);
 
   bool out() const { return out_; }
   Counters counters() const { return counters_; }
@@ -58,6 +63,7 @@ class ServoCommander {
   void Fail(const std::string& error, std::int64_t now_us);
   void RetryIfDue(std::int64_t now_us);
   void FinishReopen(std::int64_t now_us);
+  void Report(const DeviceHealth& health) const;
 
   LimitedServoDriver& servos_;
   std::mutex& mutex_;

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "agent/modes/agent_mode.hpp"
+#include "agent/pipeline/device_health.hpp"
 
 namespace kapfix::agent {
 
@@ -25,6 +26,8 @@ struct TelemetryRecord {
   int slice = 0;                                 // [1..slice_count] slice in use; 0 = none
   std::int64_t distance = 0;                     // [grey level²] SSD at the match
   std::optional<std::uint64_t> reference_frame;  // fixate: index of the frame whose view is held
+  DeviceHealth camera_health;                    // after this step's servo command
+  DeviceHealth servo_health;
   // [px] simulation only: the view's true residual offset from the reference frame's view.
   std::optional<double> view_offset_x_px;
   std::optional<double> view_offset_y_px;

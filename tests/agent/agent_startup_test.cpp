@@ -12,6 +12,8 @@
 #include "agent/agent.hpp"
 #include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/link/curve_key_pair.hpp"
+#include "kapfix/v1/envelope_codec.hpp"
+#include "tests/link/link_test_support.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -81,6 +83,20 @@ TEST_F(AgentStartupTest, MissingDevicesAreWaitedForNotAnError) {
   std::unique_ptr<Agent> agent;
   ASSERT_NO_THROW(agent = std::make_unique<Agent>(config_, AgentOptions{}));
   EXPECT_FALSE(agent->simulated());
+  // What is missing is in the state a station gets, with the device's own reason.
+  kapfix::testing::RawStation station(agent->command_endpoint());
+  kapfix::v1::Command request;
+  request.mutable_request_state();
+  kapfix::v1::Stamp(request.mutable_header(), config_.agent_id, 1);
+  const auto reply = station.Exchange(request);
+  ASSERT_TRUE(reply.has_value());
+  const kapfix::v1::AgentState& state = reply->state();
+  EXPECT_EQ(state.camera_health().status(), kapfix::v1::DEVICE_WAITING);
+  EXPECT_NE(state.camera_health().reason().find("/dev/video97"), std::string::npos)
+      << state.camera_health().reason();
+  EXPECT_EQ(state.servo_health().status(), kapfix::v1::DEVICE_WAITING);
+  EXPECT_NE(state.servo_health().reason().find("/dev/ttyACM97"), std::string::npos)
+      << state.servo_health().reason();
   agent->Stop();
   const PipelineStats stats = agent->Run();
   EXPECT_EQ(stats.processed, 0u);

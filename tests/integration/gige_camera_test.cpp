@@ -16,11 +16,13 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "kapfix/v1/state.pb.h"
 #include "tests/integration/child_process.hpp"
 #include "tests/link/link_test_support.hpp"
 
@@ -144,6 +146,8 @@ class GigECameraTest : public ::testing::Test {
   std::vector<std::string> AgentArgs(const std::vector<std::string>& extra) {
     UnusedPort command;
     UnusedPort stream;
+    command_port_ = command.port();
+    stream_port_ = stream.port();
     std::vector<std::string> args{KAPFIX_AGENT,
                                   "--camera",
                                   "aravis:127.0.0.1",
@@ -164,8 +168,17 @@ class GigECameraTest : public ::testing::Test {
     agent_ = std::make_unique<ChildProcess>(AgentArgs(extra), folder_ / "agent.out", log());
   }
   fs::path log() const { return folder_ / "agent.err"; }
+  // `kapfix-ctl status` against the agent started last.
+  ProcessOutcome CtlStatus() const {
+    return RunProcess(std::string(KAPFIX_CTL) + " --agent 127.0.0.1 --command-port " +
+                          std::to_string(command_port_) + " --stream-port " +
+                          std::to_string(stream_port_) + " --timeout 5000 status",
+                      folder_ / "ctl.err");
+  }
 
   PtyMaestro maestro_;
+  int command_port_ = 0;
+  int stream_port_ = 0;
   fs::path folder_;
   std::unique_ptr<ChildProcess> camera_;
   std::unique_ptr<ChildProcess> agent_;
@@ -223,6 +236,54 @@ TEST_F(GigECameraTest, KilledAndRestartedCameraIsReconnectedWhileTheServosHold) 
   ASSERT_GE(maestro_.targets().size(), before_back + 20) << ReadFile(log());
   EXPECT_EQ(agent_->Stop(SIGTERM), 0) << ReadFile(log());
   EXPECT_NE(ReadFile(log()).find("servos parked"), std::string::npos) << ReadFile(log());
+}
+
+// The next AgentState from `station` whose camera health is `status`, within `within`
+// (the agent republishes its state about once a second); std::nullopt if none came.
+std::optional<kapfix::v1::AgentState> NextStateWithCamera(RawSubscriber& station,
+                                                          kapfix::v1::DeviceStatus status,
+                                                          steady_clock::duration within) {
+  const auto deadline = steady_clock::now() + within;
+  while (steady_clock::now() < deadline) {
+    const auto payload = station.Next("state");
+    kapfix::v1::AgentState state;
+    if (payload && state.ParseFromString(*payload) && state.camera_health().status() == status) {
+      return state;
+    }
+  }
+  return std::nullopt;
+}
+
+// Start-up that waits for hardware, as a station sees it: no camera when the agent starts, so
+// its state over the link says the camera is waiting (and why) and kapfix-ctl status prints
+// it; the camera is switched on, and the state and kapfix-ctl say it is there.
+TEST_F(GigECameraTest, ACameraMissingAtStartIsReportedWaitingThenOkOverTheLink) {
+  StartAgent();
+  RawSubscriber station("tcp://127.0.0.1:" + std::to_string(stream_port_), {"heartbeat", "state"});
+  const auto up = steady_clock::now() + seconds(60);
+  bool ready = false;
+  while (!ready && agent_->running() && steady_clock::now() < up) ready = station.Ready();
+  ASSERT_TRUE(ready) << ReadFile(log());
+
+  const auto waiting = NextStateWithCamera(station, kapfix::v1::DEVICE_WAITING, seconds(30));
+  ASSERT_TRUE(waiting.has_value()) << ReadFile(log());
+  EXPECT_NE(waiting->camera_health().reason().find("127.0.0.1"), std::string::npos)
+      << waiting->camera_health().reason();
+  EXPECT_EQ(waiting->servo_health().status(), kapfix::v1::DEVICE_OK);
+  const ProcessOutcome before = CtlStatus();
+  EXPECT_EQ(before.exit_code, 0) << before.err;
+  EXPECT_NE(before.out.find("camera: waiting reason="), std::string::npos) << before.out;
+  EXPECT_NE(before.out.find("servos: ok"), std::string::npos) << before.out;
+
+  StartCamera();
+  const auto ok = NextStateWithCamera(station, kapfix::v1::DEVICE_OK, seconds(60));
+  ASSERT_TRUE(ok.has_value()) << ReadFile(log());
+  EXPECT_TRUE(ok->camera_health().reason().empty()) << ok->camera_health().reason();
+  EXPECT_GT(ok->version(), waiting->version());
+  const ProcessOutcome after = CtlStatus();
+  EXPECT_EQ(after.exit_code, 0) << after.err;
+  EXPECT_NE(after.out.find("camera: ok\n"), std::string::npos) << after.out;
+  EXPECT_EQ(agent_->Stop(SIGTERM), 0) << ReadFile(log());
 }
 
 // 0.1 % of the stream's packets lost: some frames are incomplete and skipped, the flight goes

@@ -66,6 +66,11 @@ std::string ModeWord(kapfix::v1::Mode mode) {
   return EnumWord(*kapfix::v1::Mode_descriptor(), mode, "MODE_");
 }
 
+std::string DeviceHealthWord(kapfix::v1::DeviceStatus status) {
+  if (status == kapfix::v1::DEVICE_STATUS_UNSPECIFIED) return "unknown";
+  return EnumWord(*kapfix::v1::DeviceStatus_descriptor(), status, "DEVICE_");
+}
+
 std::string StateText(const kapfix::v1::AgentState& state) {
   std::ostringstream out;
   const auto& search = state.search();
@@ -73,6 +78,14 @@ std::string StateText(const kapfix::v1::AgentState& state) {
       << " simulated=" << (state.simulated() ? 1 : 0) << " frame=" << state.frame_width_px() << "x"
       << state.frame_height_px() << " photos_stored=" << state.photos_stored() << "\n";
   out << "mode: " << ModeWord(state.mode()) << "\n";
+  // One line per device: "camera: waiting reason=…"; the reason is the rest of the line.
+  for (const auto& [name, health] :
+       {std::pair<const char*, const kapfix::v1::DeviceHealth&>{"camera", state.camera_health()},
+        std::pair<const char*, const kapfix::v1::DeviceHealth&>{"servos", state.servo_health()}}) {
+    out << name << ": " << DeviceHealthWord(health.status());
+    if (!health.reason().empty()) out << " reason=" << health.reason();
+    out << "\n";
+  }
   out << "slice: " << state.slice() << " of " << search.slice_count() << "\n";
   // The settings, one line per settings message, every field as the schema names it.
   for (const char* name : {"gains", "search", "camera", "lens", "video"}) {
@@ -99,7 +112,9 @@ std::string TelemetryText(const kapfix::v1::Telemetry& telemetry) {
       << " pan_deg=" << telemetry.pan_angle_deg() << " tilt_deg=" << telemetry.tilt_angle_deg()
       << " fps=" << telemetry.fps() << " loop_latency_us=" << telemetry.loop_latency_us()
       << " telemetry_dropped=" << telemetry.telemetry_dropped()
-      << " video_frames_dropped=" << telemetry.video_frames_dropped();
+      << " video_frames_dropped=" << telemetry.video_frames_dropped()
+      << " camera=" << DeviceHealthWord(telemetry.camera_health().status())
+      << " servos=" << DeviceHealthWord(telemetry.servo_health().status());
   return out.str();
 }
 

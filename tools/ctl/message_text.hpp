@@ -11,7 +11,8 @@
 
 namespace kapfix::ctl {
 
-// Several lines: mode, slice, then one line per settings group ("gains: p=0.8 …").
+// Several lines: mode, the devices ("camera: ok", "servos: waiting reason=…"), slice, then one
+// line per settings group ("gains: p=0.8 …").
 std::string StateText(const kapfix::v1::AgentState& state);
 
 // One line: "telemetry seq=… frame=… mode=fixate dx=… dy=… confidence=… lock_lost=0 …".
@@ -22,5 +23,7 @@ std::string SliceReportText(const kapfix::v1::SliceReport& report);
 
 // "fixate" for MODE_FIXATE: an enum value's name without its type prefix, lower case.
 std::string ModeWord(kapfix::v1::Mode mode);
+// "ok", "waiting", "lost"; "unknown" from an agent that does not report it.
+std::string DeviceHealthWord(kapfix::v1::DeviceStatus status);
 
 }  // namespace kapfix::ctl

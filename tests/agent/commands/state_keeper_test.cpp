@@ -91,6 +91,30 @@ TEST(StateKeeperTest, ModeChangeIsPublishedAsState) {
   EXPECT_EQ(states[0].slice(), 4u);
 }
 
+// Issue 10: a device coming or going is a new state, published at once; the same health
+// again (a retry that failed again, every frame) is not.
+TEST(StateKeeperTest, ADeviceHealthChangeIsPublishedOnceAsANewState) {
+  RecordingStreamSink sink;
+  StateKeeper keeper(AgentConfig{}, sink, false, nullptr);
+  const std::uint64_t version = keeper.State().version();
+  DevicesHealth health;
+  health.camera = DeviceHealth::Waiting("cannot open /dev/video0");
+  keeper.OnDeviceHealth(health);
+  keeper.OnDeviceHealth(health);
+  health.camera = DeviceHealth::Ok();
+  keeper.OnDeviceHealth(health);
+  keeper.OnDeviceHealth(health);
+  const auto states = sink.Messages<kapfix::v1::AgentState>();
+  ASSERT_EQ(states.size(), 2u);
+  EXPECT_EQ(states[0].camera_health().status(), kapfix::v1::DEVICE_WAITING);
+  EXPECT_EQ(states[0].camera_health().reason(), "cannot open /dev/video0");
+  EXPECT_EQ(states[0].servo_health().status(), kapfix::v1::DEVICE_OK);
+  EXPECT_EQ(states[0].version(), version + 1);
+  EXPECT_EQ(states[1].camera_health().status(), kapfix::v1::DEVICE_OK);
+  EXPECT_TRUE(states[1].camera_health().reason().empty());
+  EXPECT_EQ(states[1].version(), version + 2);
+}
+
 TEST(StateKeeperTest, SetSettingsPublishesTheNewState) {
   RecordingStreamSink sink;
   StateKeeper keeper(AgentConfig{}, sink, true, nullptr);

@@ -22,6 +22,17 @@ constexpr std::array kAllModes{AgentMode::kIdle,
                                AgentMode::kFollow,
                                AgentMode::kRecordFreeSwing};
 
+TEST(TelemetryPublisherTest, EveryMessageCarriesTheDevicesHealth) {
+  TelemetryRecord record;
+  record.servo_health = DeviceHealth::Lost("maestro /dev/ttyACM0: write: Input/output error");
+  const kapfix::v1::Telemetry t = TelemetryPublisher::ToMessage(record, 0, 0, 0);
+  EXPECT_EQ(t.camera_health().status(), kapfix::v1::DEVICE_OK);
+  EXPECT_EQ(t.servo_health().status(), kapfix::v1::DEVICE_LOST);
+  EXPECT_EQ(t.servo_health().reason(), "maestro /dev/ttyACM0: write: Input/output error");
+  std::string bytes;
+  EXPECT_TRUE(t.SerializeToString(&bytes));
+}
+
 TEST(TelemetryPublisherTest, DisplacementIsSplitIntoWholeAndSubPixelParts) {
   TelemetryRecord record;
   record.displacement_x_px = 3.25;

@@ -31,8 +31,12 @@ struct Rig {
         std::move(backend), ServoLimits{}, ServoLimits{}, [this] { return now_us; }, 1.0);
     std::string error;
     EXPECT_TRUE(servos->Open(&error)) << error;
-    commander = std::make_unique<ServoCommander>(
-        *servos, mutex, ServoCommanderOptions{100, 400, false}, [this] { return now_us; });
+    ServoCommanderOptions options;
+    options.retry_initial_ms = 100;
+    options.retry_max_ms = 400;
+    options.reopen_in_background = false;
+    commander = std::make_unique<ServoCommander>(*servos, mutex, std::move(options),
+                                                 [this] { return now_us; });
   }
   void AdvanceMs(int ms) { now_us += std::int64_t{ms} * 1000; }
 };
@@ -147,8 +151,10 @@ TEST(ServoCommanderTest, ASlowReopenRunsBesideTheControlLoopWithoutHoldingItUp) 
                             [&now_us] { return now_us; });
   ASSERT_TRUE(servos.Open(nullptr));
   std::mutex mutex;
-  ServoCommander commander(servos, mutex, ServoCommanderOptions{100, 400, true},
-                           [&now_us] { return now_us; });
+  ServoCommanderOptions options;
+  options.retry_initial_ms = 100;
+  options.retry_max_ms = 400;
+  ServoCommander commander(servos, mutex, std::move(options), [&now_us] { return now_us; });
   now_us += 1'000'000;
   commander.Command({2.0, 0.0});
   fake->Disconnect();
