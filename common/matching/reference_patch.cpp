@@ -32,14 +32,14 @@ ReferencePatch::ReferencePatch(const cv::Mat& reference, SampleSet samples)
     for (const cv::Point& p : points) values16_.push_back(reference.at<std::uint16_t>(p));
   }
   offsets_step_ = reference.step1();
-  const int channels = reference.channels();
+  const auto channels = static_cast<std::size_t>(reference.channels());
   for (const SampleSpan& span : samples_.spans()) {
     span_offsets_.push_back(static_cast<std::int32_t>(span.y * offsets_step_ + span.x * channels));
-    span_lengths_.push_back(span.length * channels);
+    span_lengths_.push_back(static_cast<std::int32_t>(span.length * channels));
   }
   single_offsets_.reserve(samples_.singles().size() * channels);
   for (const cv::Point& p : samples_.singles()) {
-    for (int c = 0; c < channels; ++c) {
+    for (std::size_t c = 0; c < channels; ++c) {
       single_offsets_.push_back(
           static_cast<std::int32_t>(p.y * offsets_step_ + p.x * channels + c));
     }
@@ -111,7 +111,8 @@ std::int64_t ReferencePatch::DistanceBgr(const cv::Mat& current, cv::Point shift
     }
     return sum;
   }
-  const std::uint8_t* base = current.ptr<std::uint8_t>(shift.y) + shift.x * kChannels;
+  const std::uint8_t* base =
+      current.ptr<std::uint8_t>(shift.y) + static_cast<std::ptrdiff_t>(shift.x) * kChannels;
   sum = SsdRows(value, base, span_offsets_.data(), span_lengths_.data(),
                 static_cast<int>(span_offsets_.size()));
   value += values8_.size() - single_offsets_.size();
