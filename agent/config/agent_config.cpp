@@ -96,8 +96,19 @@ void ReadSearch(ConfigReader& r, SearchConfig* c) {
   r.Read("slices", &c->slices);
   r.ReadParsed<SearchAxis>("axis", &c->axis, Enum<SearchAxis>(ParseSearchAxis, "x, y or both"));
   r.Read("range_px", &c->range_px);
-  r.ReadParsed<ColorChannel>("channel", &c->channel,
-                             Enum<ColorChannel>(ParseColorChannel, "green or rgb"));
+  // The settings message carries green and rgb-sum only; the per-channel rgb (the thesis's)
+  // is offered by kapfix-analyze until it has a value there.
+  r.ReadParsed<ColorChannel>(
+      "channel", &c->channel, [](const std::string& text, ColorChannel* value, std::string* why) {
+        const auto parsed = ParseColorChannel(text);
+        if (!parsed || *parsed == ColorChannel::kRgb) {
+          *why = "unknown value '" + text + "' (green or rgb-sum; per-channel rgb is for " +
+                 "kapfix-analyze only)";
+          return false;
+        }
+        *value = *parsed;
+        return true;
+      });
   r.Read("subpixel", &c->subpixel);
   r.ReadParsed<SliceScoreKind>(
       "slice_score", &c->slice_score,

@@ -18,7 +18,7 @@ struct SearchConfig {
   int slices = 9;                    // horizontal bands for SSP
   SearchAxis axis = SearchAxis::kX;  // x (kite), y (boat) or both
   int range_px = 100;                // [px] R: shifts searched in [−R, R]
-  ColorChannel channel = ColorChannel::kGreen;       // green or rgb
+  ColorChannel channel = ColorChannel::kGreen;       // green or rgb-sum
   bool subpixel = true;                              // parabola refinement
   SliceScoreKind slice_score = SliceScoreKind::kDc;  // what ranks the slices in SSP
   double dc_hysteresis_px = 1.5;                     // [px] of the dc-hyst score

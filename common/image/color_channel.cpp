@@ -2,6 +2,7 @@
 
 #include <opencv2/core.hpp>
 #include <stdexcept>
+#include <vector>
 
 namespace kapfix {
 
@@ -15,6 +16,12 @@ cv::Mat ExtractChannel(const cv::Mat& frame, ColorChannel channel) {
     cv::Mat green;
     cv::extractChannel(frame, green, 1);
     return green;
+  }
+  if (channel == ColorChannel::kRgb) {
+    if (frame.channels() == 3) return frame;
+    cv::Mat bgr;
+    cv::merge(std::vector<cv::Mat>{frame, frame, frame}, bgr);
+    return bgr;
   }
   cv::Mat sum;
   if (frame.channels() == 1) {
@@ -34,12 +41,21 @@ cv::Mat ExtractChannel(const cv::Mat& frame, ColorChannel channel) {
 
 std::optional<ColorChannel> ParseColorChannel(std::string_view text) {
   if (text == "green") return ColorChannel::kGreen;
-  if (text == "rgb") return ColorChannel::kRgbSum;
+  if (text == "rgb") return ColorChannel::kRgb;
+  if (text == "rgb-sum") return ColorChannel::kRgbSum;
   return std::nullopt;
 }
 
 std::string_view ToString(ColorChannel channel) {
-  return channel == ColorChannel::kGreen ? "green" : "rgb";
+  switch (channel) {
+    case ColorChannel::kGreen:
+      return "green";
+    case ColorChannel::kRgbSum:
+      return "rgb-sum";
+    case ColorChannel::kRgb:
+      return "rgb";
+  }
+  return "green";
 }
 
 }  // namespace kapfix

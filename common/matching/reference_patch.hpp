@@ -14,10 +14,11 @@
 
 namespace kapfix {
 
-// A stored reference: the sampled pixels' values of one plane (CV_8UC1 or CV_16UC1, see
+// A stored reference: the sampled pixels' values of one plane (CV_8UC1, CV_16UC1 or CV_8UC3, see
 // ExtractChannel) and where they sit. Distance() is the SSD between those values and the
 // pixels under them in a current plane moved by a shift (SPEC §1 "displacement": the patch is
-// found at reference position + shift).
+// found at reference position + shift). On a CV_8UC3 plane it is the thesis's per-channel SSD,
+// Σ (ΔB² + ΔG² + ΔR²) over the sampled pixels.
 //
 // Edge handling (SPEC §2.1): a shift that would move any sampled pixel out of the current
 // frame is not scored at all; ShiftRange()/CanShift() clamp the search range so that every
@@ -63,14 +64,19 @@ class ReferencePatch {
 
   template <typename T>
   std::int64_t DistanceImpl(const cv::Mat& current, cv::Point shift) const;
+  // CV_8UC3: kept apart so that the single-channel path above stays as it was.
+  std::int64_t DistanceBgr(const cv::Mat& current, cv::Point shift) const;
 
   cv::Mat image_;
   SampleSet samples_;
-  std::vector<std::uint8_t> values8_;       // CV_8UC1 reference, in SampleSet::Points() order
-  std::vector<std::uint16_t> values16_;     // CV_16UC1 reference
-  std::vector<std::int32_t> span_offsets_;  // y · step + x of each span's first pixel
+  std::vector<std::uint8_t> values8_;    // CV_8UC1 (CV_8UC3: B, G, R interleaved) reference, in
+                                         // SampleSet::Points() order
+  std::vector<std::uint16_t> values16_;  // CV_16UC1 reference
+  // In elements: on a CV_8UC3 plane a pixel is 3 elements, a span 3 · length of them and a
+  // single three offsets (B, G, R), so that the 8-bit kernels run on it unchanged.
+  std::vector<std::int32_t> span_offsets_;  // y · step + x · channels of each span's first pixel
   std::vector<std::int32_t> span_lengths_;
-  std::vector<std::int32_t> single_offsets_;  // y · step + x of each single, in elements
+  std::vector<std::int32_t> single_offsets_;  // y · step + x · channels (+ c) of each single
   std::size_t offsets_step_ = 0;              // the step (elements) the offsets assume
   std::shared_ptr<DerivedCache> derived_ = std::make_shared<DerivedCache>();
 };

@@ -98,8 +98,9 @@ struct ReferenceLevels {
   }
 };
 
-// Scores shifts at one reduced level over all of the patch's pixels there.
-template <typename T>
+// Scores shifts at one reduced level over all of the patch's pixels there. kChannels = 3: a
+// BGR plane (ColorChannel::kRgb), scored as the per-channel SSD over 3 · width elements a row.
+template <typename T, int kChannels = 1>
 class LevelScorer {
  public:
   LevelScorer(const Crop& ref, const Crop& cur, cv::Rect bounds, int level,
@@ -122,7 +123,15 @@ class LevelScorer {
     const cv::Rect span(base_.x + sx_first, base_.y + sy, patch_.width + count - 1, patch_.height);
     if ((span & cv::Rect(0, 0, cur_.cols, cur_.rows)) != span) return false;
     out->assign(static_cast<std::size_t>(count), 0);
-    if constexpr (sizeof(T) == 1) {
+    if constexpr (kChannels == 3) {
+      // No sliding form for interleaved channels: one block per shift (coarse levels are small).
+      for (int i = 0; i < count; ++i) {
+        (*out)[static_cast<std::size_t>(i)] =
+            SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x * kChannels, ref_.step1(),
+                     cur_.ptr<T>(span.y) + (span.x + i) * kChannels, cur_.step1(),
+                     patch_.width * kChannels, patch_.height);
+      }
+    } else if constexpr (sizeof(T) == 1) {
       // 8-bit planes: the reference's patch is prepared for SlidingSsd (ReferenceLevels)
       // whenever the level is valid.
       if (sliding_ == nullptr) return false;
@@ -145,7 +154,7 @@ class LevelScorer {
   bool Score(cv::Point shift, std::int64_t* distance) const {
     const cv::Rect at(base_ + shift, patch_.size());
     if ((at & cv::Rect(0, 0, cur_.cols, cur_.rows)) != at) return false;
-    if constexpr (sizeof(T) == 1) {
+    if constexpr (sizeof(T) == 1 && kChannels == 1) {
       if (sliding_ != nullptr) {
         // Whole vectors per row, no remainder loop: faster than SsdBlock on 25- and 50-pixel
         // rows, and the same integer.
@@ -153,8 +162,9 @@ class LevelScorer {
         return true;
       }
     }
-    *distance = SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x, ref_.step1(), cur_.ptr<T>(at.y) + at.x,
-                         cur_.step1(), patch_.width, patch_.height);
+    *distance = SsdBlock(ref_.ptr<T>(patch_.y) + patch_.x * kChannels, ref_.step1(),
+                         cur_.ptr<T>(at.y) + at.x * kChannels, cur_.step1(),
+                         patch_.width * kChannels, patch_.height);
     return true;
   }
 
@@ -230,7 +240,7 @@ const std::vector<std::pair<int, std::int64_t>>& Profile(const ScoreMap& scored,
   return profile;
 }
 
-template <typename T>
+template <typename T, int kChannels = 1>
 SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
                            const SearchOptions& options, int levels) {
   SearchResult result;
@@ -252,7 +262,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
     ReferenceLevels derived;
     if (!MakeCrop(reference.image(), ref_want, levels, &derived.crop)) return {};
     derived.patches.resize(static_cast<std::size_t>(levels) + 1);
-    for (int l = 1; l <= levels && sizeof(T) == 1; ++l) {
+    for (int l = 1; l <= levels && sizeof(T) == 1 && kChannels == 1; ++l) {
       const cv::Rect patch = LevelPatch(bounds, derived.crop.origin, l);
       const cv::Mat& level = derived.crop.pyramid[static_cast<std::size_t>(l)];
       if (patch.width > 0 && patch.height > 0 &&
@@ -268,7 +278,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   const Crop& ref = derived->crop;
 
   // Coarsest level: the whole window, jointly.
-  const LevelScorer<T> coarse(ref, cur, bounds, levels, derived->patch(levels));
+  const LevelScorer<T, kChannels> coarse(ref, cur, bounds, levels, derived->patch(levels));
   if (!coarse.valid()) return result;
   const cv::Point centre_c(FloorDiv(o.x, step), FloorDiv(o.y, step));
   const int rx = (reach_x + step - 1) / step;
@@ -308,7 +318,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
 
   // Finer reduced levels: descend from twice the coarser best, all pixels.
   for (int l = levels - 1; l >= 1; --l) {
-    const LevelScorer<T> level(ref, cur, bounds, l, derived->patch(l));
+    const LevelScorer<T, kChannels> level(ref, cur, bounds, l, derived->patch(l));
     if (!level.valid()) return result;
     ScoreMap scored;
     cv::Point level_best = best * 2;
@@ -368,9 +378,13 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
 
 SearchResult PyramidSearch::Search(const ReferencePatch& reference, const cv::Mat& current,
                                    const SearchOptions& options) const {
-  return reference.type() == CV_8UC1
-             ? SearchPyramid<std::uint8_t>(reference, current, options, levels_)
-             : SearchPyramid<std::uint16_t>(reference, current, options, levels_);
+  if (reference.type() == CV_8UC1) {
+    return SearchPyramid<std::uint8_t>(reference, current, options, levels_);
+  }
+  if (reference.type() == CV_16UC1) {
+    return SearchPyramid<std::uint16_t>(reference, current, options, levels_);
+  }
+  return SearchPyramid<std::uint8_t, 3>(reference, current, options, levels_);
 }
 
 }  // namespace kapfix

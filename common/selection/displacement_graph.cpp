@@ -10,9 +10,11 @@ namespace kapfix {
 void CheckSwingPlanes(const std::vector<cv::Mat>& planes, const char* who) {
   for (std::size_t i = 0; i < planes.size(); ++i) {
     const cv::Mat& plane = planes[i];
-    if (plane.empty() || (plane.type() != CV_8UC1 && plane.type() != CV_16UC1)) {
-      throw std::invalid_argument(std::string(who) + ": frame " + std::to_string(i) +
-                                  " is not a CV_8UC1 or CV_16UC1 plane (see ExtractChannel)");
+    if (plane.empty() ||
+        (plane.type() != CV_8UC1 && plane.type() != CV_16UC1 && plane.type() != CV_8UC3)) {
+      throw std::invalid_argument(
+          std::string(who) + ": frame " + std::to_string(i) +
+          " is not a CV_8UC1, CV_16UC1 or CV_8UC3 plane (see ExtractChannel)");
     }
     if (plane.size() != planes.front().size() || plane.type() != planes.front().type()) {
       throw std::invalid_argument(std::string(who) + ": frame " + std::to_string(i) +

@@ -26,9 +26,9 @@ double MeasureDisplacement(const cv::Mat& previous, const cv::Mat& current,
                            const SampleSet& samples, const SearchStrategy& strategy,
                            const SearchOptions& options);
 
-// The graph of `patch` (frame coordinates, sampled by `sampling`) over single-channel planes
-// (CV_8UC1 or CV_16UC1, see ExtractChannel) of equal size and type. progress(done, total) is
-// called after each sample, total = planes.size() − 1. Throws std::invalid_argument on
+// The graph of `patch` (frame coordinates, sampled by `sampling`) over planes
+// (CV_8UC1, CV_16UC1 or CV_8UC3, see ExtractChannel) of equal size and type. progress(done, total)
+// is called after each sample, total = planes.size() − 1. Throws std::invalid_argument on
 // mismatched planes, invalid options or a patch outside the frame.
 DisplacementGraph BuildDisplacementGraph(const std::vector<cv::Mat>& planes, cv::Rect patch,
                                          const SamplingOptions& sampling,
@@ -36,8 +36,8 @@ DisplacementGraph BuildDisplacementGraph(const std::vector<cv::Mat>& planes, cv:
                                          const SearchOptions& options,
                                          const std::function<void(int, int)>& progress = nullptr);
 
-// Throws std::invalid_argument unless every plane is a non-empty CV_8UC1 or CV_16UC1 of the
-// first plane's size and type (`who` names the caller in the message).
+// Throws std::invalid_argument unless every plane is a non-empty CV_8UC1, CV_16UC1 or CV_8UC3 of
+// the first plane's size and type (`who` names the caller in the message).
 void CheckSwingPlanes(const std::vector<cv::Mat>& planes, const char* who);
 
 }  // namespace kapfix

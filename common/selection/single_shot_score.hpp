@@ -35,7 +35,7 @@ struct SingleShotScore {
 // no shift with |shift| > 2 was scored, as nothing can be said about rivals).
 SingleShotScore SingleShotScoreFromCurve(const ErrorCurve& curve);
 
-// The score of `patch` in `plane` (CV_8UC1 or CV_16UC1), sampled by `sampling`, along
+// The score of `patch` in `plane` (CV_8UC1, CV_16UC1 or CV_8UC3), sampled by `sampling`, along
 // search.axis within ±search.range (search.origin is ignored: the self-match is at 0). kBoth
 // scores both axes and keeps the weaker one, since a 2-D search has to lock on both.
 // Throws std::invalid_argument for a patch outside the plane or invalid options.

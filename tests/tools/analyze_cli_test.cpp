@@ -304,6 +304,33 @@ TEST(AnalyzeCliTest, LiteralRefusesBothAxes) {
   EXPECT_NE(o.err.find("--literal"), std::string::npos) << o.err;
 }
 
+TEST(AnalyzeCliTest, LiteralAcceptsTheThesisPerChannelRgb) {
+  const auto json = ParseJson(RunAnalyze("swing --image " + Photo("aero1.jpg") +
+                                         " --strategy h23 --literal --channel rgb --jitter 0 "
+                                         "--frames 30 --json"));
+  ASSERT_TRUE(json.is_object());
+  EXPECT_EQ(json["frames"], 30);
+}
+
+TEST(AnalyzeCliTest, LiteralRefusesTheSumOfChannelsWithTheReason) {
+  const Outcome o = RunAnalyze("swing --image " + Photo("aero1.jpg") +
+                               " --strategy h23 --literal --channel rgb-sum --frames 20");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.err.find("rgb-sum"), std::string::npos) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+}
+
+TEST(AnalyzeCliTest, SwingWithoutWobbleIsExactOnEveryChannel) {
+  for (const char* channel : {"green", "rgb", "rgb-sum"}) {
+    const auto json = ParseJson(RunAnalyze("swing --image " + Photo("aero1.jpg") +
+                                           " --strategy all --jitter 0 --frames 60 --json "
+                                           "--channel " +
+                                           channel));
+    ASSERT_TRUE(json.is_object()) << channel;
+    EXPECT_DOUBLE_EQ(json["gross_fail_pct"].get<double>(), 0.0) << channel;
+  }
+}
+
 TEST(AnalyzeCliTest, SurfaceAtThesisPixelCountsSamples2500Random) {
   const auto json = ParseJson(RunAnalyze("surface --image " + Photo("fruits.jpg") +
                                          " --sampling random --thesis-pixels --frame 300 --json"));

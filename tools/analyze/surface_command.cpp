@@ -47,7 +47,7 @@ nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
                                 args.layout + "'");
   }
   const auto channel = ParseColorChannel(args.channel);
-  if (!channel) throw std::invalid_argument("--channel: expected green or rgb");
+  if (!channel) throw std::invalid_argument("--channel: expected green, rgb or rgb-sum");
   SamplingOptions sampling;
   std::string error;
   if (!ParseSamplingOptions(args.sampling, &sampling, &error)) {
@@ -148,7 +148,7 @@ void AddSurfaceCommand(CLI::App& app, OutputArgs* output, CommandRun* run) {
       ->capture_default_str();
   command->add_option("--layout", args->layout, "central, individuals or merge")
       ->capture_default_str();
-  command->add_option("--channel", args->channel, "green or rgb")->capture_default_str();
+  command->add_option("--channel", args->channel, "green, rgb or rgb-sum")->capture_default_str();
   command->add_option("--seed", args->seed, "Seed of the random sampling")->capture_default_str();
   command->add_option("--max-steps", args->max_steps, "Descent step limit per start")
       ->capture_default_str();

@@ -22,7 +22,9 @@ void AddSwingOptions(CLI::App* command, SwingArgs* args) {
   command->add_option("--seed", args->seed, "Seed of noise, jitter and sampling")
       ->capture_default_str();
   command->add_option("--size", args->size, "Frame size WxH [px]")->capture_default_str();
-  command->add_option("--channel", args->channel, "green or rgb (sum of channels)")
+  command
+      ->add_option("--channel", args->channel,
+                   "green, rgb (per-channel SSD, as the thesis) or rgb-sum (SSD of B+G+R)")
       ->capture_default_str();
   command->add_option("--sampling", args->sampling, "all, static, random or random:F")
       ->capture_default_str();
@@ -104,7 +106,8 @@ SwingOptions MakeSwingOptions(const SwingArgs& args) {
 ColorChannel MakeColorChannel(const SwingArgs& args) {
   const auto channel = ParseColorChannel(args.channel);
   if (!channel)
-    throw std::invalid_argument("--channel: expected green or rgb, got '" + args.channel + "'");
+    throw std::invalid_argument("--channel: expected green, rgb or rgb-sum, got '" + args.channel +
+                                "'");
   return *channel;
 }
 
@@ -136,12 +139,12 @@ std::unique_ptr<SearchStrategy> MakeStrategy(const std::string& name) {
 
 std::unique_ptr<SearchStrategy> MakeStrategy(const SwingArgs& args, const std::string& name) {
   if (!args.literal) return MakeStrategy(name);
-  if (MakeColorChannel(args) != ColorChannel::kGreen) {
-    // Not built yet: the thesis's rgb distance is the per-channel SSD; ours is the SSD of the
-    // sum B + G + R, which scores (255, 0, 0) against (0, 255, 0) as equal.
+  if (MakeColorChannel(args) == ColorChannel::kRgbSum) {
+    // The SSD of the sum B + G + R is ours, not the thesis's: it scores (255, 0, 0) against
+    // (0, 255, 0) as equal.
     throw std::invalid_argument(
-        "--literal: the thesis's rgb distance is the per-channel SSD, which this build does not "
-        "have (--channel rgb is the SSD of B+G+R); use --channel green");
+        "--literal: the thesis defines no rgb-sum distance (the SSD of B+G+R); use --channel "
+        "green or rgb (the thesis's per-channel SSD)");
   }
   std::string error;
   auto strategy = MakeLiteralSearchStrategy(name, MakeSearchOptions(args), &error);

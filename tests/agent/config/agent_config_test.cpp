@@ -138,6 +138,18 @@ TEST_F(AgentConfigFileTest, UnknownEnumValueListsTheChoices) {
       << error;
 }
 
+TEST_F(AgentConfigFileTest, ChannelIsGreenOrTheSumOfChannels) {
+  // The settings message cannot carry the per-channel rgb of kapfix-analyze: refused by name.
+  const std::string error = LoadError(R"({"search": {"channel": "rgb"}})");
+  EXPECT_NE(error.find("search.channel: unknown value 'rgb' (green or rgb-sum"), std::string::npos)
+      << error;
+  AgentConfig config;
+  std::string why;
+  ASSERT_TRUE(LoadAgentConfig(Write(R"({"search": {"channel": "rgb-sum"}})"), &config, &why))
+      << why;
+  EXPECT_EQ(config.search.channel, ColorChannel::kRgbSum);
+}
+
 TEST_F(AgentConfigFileTest, WrongTypeIsAnError) {
   const std::string error = LoadError(R"({"video": {"quality": "high"}})");
   EXPECT_NE(error.find("video.quality: must be an integer"), std::string::npos) << error;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+#include <vector>
+
 #include "common/image/color_channel.hpp"
 #include "tests/support/test_images.hpp"
 
@@ -42,6 +45,69 @@ TEST(ReferencePatchTest, SumOfChannelsUsesSixteenBitArithmetic) {
   const cv::Mat cur = ExtractChannel(cur_bgr, ColorChannel::kRgbSum);
   const ReferencePatch patch(ref, SampleSet({cv::Rect(10, 10, 20, 20)}, {SamplingKind::kAll}));
   EXPECT_EQ(patch.Distance(cur, {0, 0}), 400LL * 750 * 750);
+}
+
+TEST(ReferencePatchTest, RgbScoresRedAgainstGreenAsTwoSquaresAPixelWhereTheSumScoresZero) {
+  // The thesis's rgb distance is per channel: (255, 0, 0) against (0, 255, 0) differs by 255
+  // in two channels. The SSD of B + G + R sees 255 against 255.
+  const cv::Mat red(20, 20, CV_8UC3, cv::Scalar(0, 0, 255));  // BGR
+  const cv::Mat green(20, 20, CV_8UC3, cv::Scalar(0, 255, 0));
+  const SampleSet set({cv::Rect(5, 5, 10, 10)}, {SamplingKind::kAll});
+  const ReferencePatch rgb(ExtractChannel(red, ColorChannel::kRgb), set);
+  const ReferencePatch sum(ExtractChannel(red, ColorChannel::kRgbSum), set);
+  EXPECT_EQ(rgb.Distance(ExtractChannel(green, ColorChannel::kRgb), {0, 0}), 100LL * 2 * 255 * 255);
+  EXPECT_EQ(sum.Distance(ExtractChannel(green, ColorChannel::kRgbSum), {0, 0}), 0);
+}
+
+TEST(ReferencePatchTest, RgbDistanceOfATwoPixelPatchWorkedByHand) {
+  // Reference pixels (1, 2, 3) and (10, 20, 30); under them at shift (1, 0): (4, 0, 3) and
+  // (10, 25, 27). Σ = 3² + 2² + 0² + 0² + 5² + 3² = 47.
+  cv::Mat ref(1, 3, CV_8UC3, cv::Scalar(0, 0, 0));
+  ref.at<cv::Vec3b>(0, 0) = {1, 2, 3};
+  ref.at<cv::Vec3b>(0, 1) = {10, 20, 30};
+  cv::Mat cur(1, 3, CV_8UC3, cv::Scalar(0, 0, 0));
+  cur.at<cv::Vec3b>(0, 1) = {4, 0, 3};
+  cur.at<cv::Vec3b>(0, 2) = {10, 25, 27};
+  const ReferencePatch patch(ref, SampleSet({cv::Rect(0, 0, 2, 1)}, {SamplingKind::kAll}));
+  EXPECT_EQ(patch.Distance(cur, {1, 0}), 47);
+}
+
+TEST(ReferencePatchTest, RgbDistanceIsTheSumOfTheThreeChannelsDistancesForEverySampling) {
+  // Exact arithmetic on a synthetic image: each channel's SSD computed on its own 8-bit plane
+  // (the single-channel path), added, equals the three-channel distance: spans (all), a
+  // static pattern and random singles, and a current frame with another stride (an ROI).
+  cv::Mat ref;
+  cv::Mat cur;
+  cv::merge(std::vector<cv::Mat>{testing::SmoothTexture({120, 90}, 11),
+                                 testing::SmoothTexture({120, 90}, 12),
+                                 testing::SmoothTexture({120, 90}, 13)},
+            ref);
+  cv::Mat wide;
+  cv::merge(std::vector<cv::Mat>{testing::SmoothTexture({160, 90}, 14),
+                                 testing::SmoothTexture({160, 90}, 15),
+                                 testing::SmoothTexture({160, 90}, 16)},
+            wide);
+  cur = wide(cv::Rect(0, 0, 120, 90)).clone();
+  const cv::Mat roi = wide(cv::Rect(0, 0, 120, 90));  // same pixels, stride 160
+  std::vector<cv::Mat> ref_planes;
+  std::vector<cv::Mat> cur_planes;
+  cv::split(ref, ref_planes);
+  cv::split(cur, cur_planes);
+  for (const SamplingOptions sampling :
+       {SamplingOptions{SamplingKind::kAll}, SamplingOptions{SamplingKind::kStatic},
+        SamplingOptions{SamplingKind::kRandom, 0.1, 5}}) {
+    const SampleSet set({cv::Rect(30, 20, 50, 40)}, sampling);
+    const ReferencePatch patch(ref, set);
+    for (const cv::Point shift : {cv::Point(0, 0), cv::Point(-30, 7), cv::Point(40, -20)}) {
+      std::int64_t expected = 0;
+      for (int c = 0; c < 3; ++c) {
+        expected += ReferencePatch(ref_planes[c], set).Distance(cur_planes[c], shift);
+      }
+      EXPECT_GT(expected, 0);
+      EXPECT_EQ(patch.Distance(cur, shift), expected) << ToString(sampling) << " at " << shift;
+      EXPECT_EQ(patch.Distance(roi, shift), expected) << ToString(sampling) << " ROI at " << shift;
+    }
+  }
 }
 
 TEST(ReferencePatchTest, IdenticalFramesHaveZeroDistanceAtZeroShift) {
