@@ -74,7 +74,7 @@ TEST(SettingsSchemaTest, EnumWordsDropTheEnumPrefix) {
   EXPECT_EQ(
       SettingWord(*SliceScoreKind_descriptor()->FindValueByNumber(SLICE_SCORE_KIND_DC_HYSTERESIS)),
       "dc_hysteresis");
-  EXPECT_EQ(SettingWord(*Channel_descriptor()->FindValueByNumber(CHANNEL_RGB_SUM)), "rgb");
+  EXPECT_EQ(SettingWord(*Channel_descriptor()->FindValueByNumber(CHANNEL_RGB_SUM)), "rgb-sum");
 }
 
 // Issue 15: a lower bound is either 0 itself (no dead band, no integral term) or a value at
