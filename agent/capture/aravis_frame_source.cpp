@@ -1,7 +1,7 @@
 // The only translation unit that includes Aravis and glib (SPEC §8: glib's `signals` member
-// clashes with Qt's keyword, so these headers must not leak into any header).
-#include "agent/capture/aravis_frame_source.hpp"
 
+#include "common/time/steady_clock.hpp"
+// clashes with Qt's keyword, so these headers must not leak into any header).
 #include <arv.h>
 #include <spdlog/spdlog.h>
 
@@ -9,14 +9,10 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "agent/capture/aravis_frame_source.hpp"
+
 namespace kapfix::agent {
 namespace {
-
-std::int64_t NowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 // Takes a GError's message and frees it; "" when there was no error.
 std::string TakeError(GError** error) {
@@ -227,7 +223,7 @@ bool AravisFrameSource::Grab(CapturedFrame* frame, std::string* error) {
       arv_stream_push_buffer(d.stream, buffer);
       continue;
     }
-    const std::int64_t now = NowUs();
+    const std::int64_t now = SteadyClockNowUs();
     std::string reason;
     const bool converted = d.Convert(buffer, &frame->image, &reason);
     arv_stream_push_buffer(d.stream, buffer);

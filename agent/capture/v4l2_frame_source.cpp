@@ -14,18 +14,14 @@
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "common/time/steady_clock.hpp"
+
 namespace kapfix::agent {
 namespace {
 
 bool IsIndex(const std::string& text) {
   return !text.empty() && text.size() <= 3 &&
          std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); });
-}
-
-std::int64_t NowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
 }
 
 // V4L2_CID_EXPOSURE_ABSOLUTE counts in units of 100 µs.
@@ -114,17 +110,17 @@ bool V4l2FrameSource::Open(std::string* error) {
 bool V4l2FrameSource::Grab(CapturedFrame* frame, std::string* error) {
   if (!capture_.isOpened()) return Fail("not open", error);
   cv::Mat image;
-  const std::int64_t deadline = NowUs() + std::int64_t{options_.grab_timeout_ms} * 1000;
+  const std::int64_t deadline = SteadyClockNowUs() + std::int64_t{options_.grab_timeout_ms} * 1000;
   // A read interrupted by a signal (EINTR) fails at once: try again until the deadline.
   while (!capture_.read(image) || image.empty()) {
-    if (NowUs() >= deadline || !capture_.isOpened()) {
+    if (SteadyClockNowUs() >= deadline || !capture_.isOpened()) {
       return Fail("lost (no frame within " + std::to_string(options_.grab_timeout_ms) +
                       " ms; unplugged or stalled)",
                   error);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));  // no busy loop when it fails fast
   }
-  const std::int64_t now = NowUs();
+  const std::int64_t now = SteadyClockNowUs();
   // The driver's timestamp of the buffer [ms], CLOCK_MONOTONIC for UVC and most drivers.
   const auto driver_us = static_cast<std::int64_t>(capture_.get(cv::CAP_PROP_POS_MSEC) * 1000.0);
   const bool driver_stamp = driver_us > 0 && driver_us <= now && now - driver_us < 1'000'000;

@@ -4,16 +4,9 @@
 
 #include <chrono>
 
+#include "common/time/steady_clock.hpp"
+
 namespace kapfix::agent {
-namespace {
-
-std::int64_t NowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 SystemdNotifier::SystemdNotifier() {
   std::uint64_t usec = 0;
@@ -27,7 +20,7 @@ void SystemdNotifier::Ready(const std::string& status) {
 
 void SystemdNotifier::Alive() {
   if (interval_us_ == 0) return;
-  const std::int64_t now = NowUs();
+  const std::int64_t now = SteadyClockNowUs();
   std::int64_t last = last_us_.load();
   if (now - last < static_cast<std::int64_t>(interval_us_)) return;
   if (!last_us_.compare_exchange_strong(last, now)) return;  // another thread just sent it

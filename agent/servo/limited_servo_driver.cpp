@@ -17,12 +17,6 @@ std::string Range(const ServoLimits& l) {
 
 }  // namespace
 
-std::int64_t SteadyClockNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 LimitedServoDriver::LimitedServoDriver(std::unique_ptr<ServoDriver> backend, ServoLimits pan,
                                        ServoLimits tilt, MonotonicClockUs clock,
                                        double frame_period_s)

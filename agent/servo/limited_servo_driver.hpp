@@ -7,13 +7,13 @@
 
 #include "agent/servo/servo_driver.hpp"
 #include "common/control/servo_limits.hpp"
+#include "common/time/steady_clock.hpp"
 
 namespace kapfix::agent {
 
 // Monotonic time [µs]; injectable so that tests control the rate limit's clock.
 using MonotonicClockUs = std::function<std::int64_t()>;
-// std::chrono::steady_clock [µs].
-std::int64_t SteadyClockNowUs();
+using kapfix::SteadyClockNowUs;
 
 // [s] the step bound's period when none is given: a 30 frames/s camera.
 inline constexpr double kDefaultServoFramePeriodS = 1.0 / 30;
