@@ -24,8 +24,6 @@
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
 
-extern char** environ;
-
 namespace {
 
 struct Run {
@@ -103,9 +101,7 @@ Run Fly(const std::string& agent, int frames, int stations, int port,
           answered.load()};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   CLI::App app{"kapfix-bench-command-flood: loop latency under a command flood"};
   std::string agent = KAPFIX_AGENT;
   int frames = 600;
@@ -132,4 +128,15 @@ int main(int argc, char** argv) {
               flood.p99_ms / quiet.p99_ms);
   std::filesystem::remove_all(dir);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kapfix-bench-command-flood: %s\n", e.what());
+    return 1;
+  }
 }
