@@ -231,6 +231,9 @@ Reply CommandValidator::Validate(const Command& command,
     case Command::kSetVideo:
       check.Settings(command.set_video(), "set_video");
       break;
+    case Command::kSetPhoto:
+      check.Settings(command.set_photo(), "set_photo");
+      break;
     case Command::COMMAND_NOT_SET:
       check.Fail(kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND, UnknownCommandReason(command));
       break;

@@ -331,6 +331,12 @@ void WriteCommandSeeds(CorpusFolder& folder) {
   command.mutable_set_video()->set_scale(0.5F);
   write("valid_set_video", command);
 
+  command = SampleCommand(++sequence);
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  command.mutable_set_photo()->set_window_s(2.0F);
+  command.mutable_set_photo()->set_exposure_ms(10.0F);
+  write("valid_set_photo", command);
+
   // An empty agent id addresses whichever agent answers.
   command = SampleCommand(++sequence);
   command.mutable_header()->clear_agent_id();

@@ -22,7 +22,8 @@ TEST(CtlSettingKeyTest, EveryKeyBuildsACommand) {
   // One readable value per kind of key.
   for (const SettingKey& key : SettingKeys()) {
     bool built = false;
-    for (const char* value : {"1", "on", "x", "p", "all", "green", "dc", "h23", "6mm"}) {
+    for (const char* value :
+         {"1", "on", "x", "p", "all", "green", "dc", "h23", "6mm", "interval", "agent"}) {
       if (MakeSetCommand(key.name, value, nullptr)) {
         built = true;
         break;
