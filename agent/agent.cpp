@@ -17,6 +17,8 @@
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
+#include "agent/still_camera/gphoto2_still_camera.hpp"
+#include "agent/still_camera/still_camera_trigger.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
 #include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
@@ -261,6 +263,10 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     return state_ ? state_->settings()->lens : config_.lens;
   });
   photos_->SetInterval(config_.photos.interval_s);
+  // The still camera is opened at its first photo, so it costs nothing until selected.
+  photos_->SetStillCamera(
+      std::make_shared<StillCameraTrigger>(std::make_unique<Gphoto2StillCamera>()));
+  photos_->SetCamera(options_.photo_camera);
   video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
   telemetry_publisher_ = std::make_unique<TelemetryPublisher>(
       *publisher_, [video = video_.get()] { return video->dropped(); });

@@ -42,6 +42,8 @@ struct AgentOptions {
   bool keep_telemetry = false;
   // Allow the link to listen beyond this machine without CurveZMQ keys (logged as a warning).
   bool insecure = false;
+  // The camera photos are taken with (--photo-camera); UNSPECIFIED keeps the configured one.
+  kapfix::v1::PhotoCamera photo_camera = kapfix::v1::PHOTO_CAMERA_UNSPECIFIED;
 };
 
 // kapfix-agent's built-in configuration (no --config): AgentConfig's defaults — everything

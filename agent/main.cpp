@@ -117,6 +117,12 @@ int Main(int argc, char** argv) {
   app.add_option("--frame-drops", frame_drops, "simulation: share of frames lost (0…0.5)");
   app.add_option("--calibration-error", calibration_error,
                  "simulation: lens calibration = F × the true deg/px (0.5…2)");
+  // Issue 13: which camera takes photos (a USB still camera through libgphoto2, or ours).
+  std::string photo_camera;
+  app.add_option("--photo-camera", photo_camera,
+                 "camera for photos: agent (the tracking camera) or gphoto2 (a USB still camera; "
+                 "falls back to agent when it cannot)")
+      ->check(CLI::IsMember({"agent", "gphoto2"}));
   CLI11_PARSE(app, argc, argv);
 
   kapfix::WorldOptions world;
@@ -177,7 +183,9 @@ int Main(int argc, char** argv) {
   }
   if (preflight) {
     bool all_pass = true;
-    for (const PreflightCheck& check : RunPreflight(config, {.simulate = force_sim})) {
+    PreflightOptions checks{.simulate = force_sim};
+    if (photo_camera == "gphoto2") checks.photo_camera = kapfix::v1::PHOTO_CAMERA_GPHOTO2;
+    for (const PreflightCheck& check : RunPreflight(config, checks)) {
       std::printf("%s\n", check.Line().c_str());
       all_pass = all_pass && check.pass;
     }
@@ -190,6 +198,10 @@ int Main(int argc, char** argv) {
   options.start_mode = *ParseAgentMode(start_mode);
   options.keep_telemetry = !report_dir.empty();
   options.insecure = insecure;
+  if (!photo_camera.empty()) {
+    options.photo_camera = photo_camera == "gphoto2" ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
+                                                     : kapfix::v1::PHOTO_CAMERA_AGENT;
+  }
   if (frames) options.frames = *frames;
   if (duration_s) {
     options.frames = static_cast<std::uint64_t>(std::llround(*duration_s * config.camera.fps));

@@ -12,6 +12,8 @@ runtime_packages=(
   libopencv-core406 libopencv-imgproc406 libopencv-imgcodecs406 libopencv-videoio406
   libzmq5 libprotobuf32 libsodium23 libspdlog1.10 libfmt9
   libaravis-0.8-0 libusb-1.0-0 libsystemd0
+  # a USB still camera for photos (issue 13)
+  libgphoto2-6
   adduser udev kmod
   # opencv-doc: the scene photos that `kapfix-agent --sim` flies over
   opencv-doc
@@ -30,6 +32,8 @@ packages=(
   # agent camera backends (SPEC §8: aravis needs libusb's -dev package beside it), systemd
   # notification; aravis-tools: the fake GigE Vision camera of the integration test
   libaravis-dev libusb-1.0-0-dev libsystemd-dev aravis-tools
+  # a USB still camera for photos (issue 13): libgphoto2
+  libgphoto2-dev
   # packaging and its install test (deploy/check-agent-deb.sh)
   debootstrap systemd
   # libraries used instead of home-grown code: CLI parsing, logging, JSON

@@ -65,21 +65,34 @@ bool PhotoStore::CheckWritable(std::uintmax_t bytes, std::string* error) const {
   return true;
 }
 
-kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::PhotoMetadata metadata,
-                                           std::string* jpeg) {
+std::string PhotoStore::EncodeJpeg(const cv::Mat& image) {
   std::vector<unsigned char> encoded;
-  if (!cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})) {
+  if (image.empty() ||
+      !cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})) {
     throw std::runtime_error("photo: JPEG encoding failed");
   }
+  return {encoded.begin(), encoded.end()};
+}
+
+kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::PhotoMetadata metadata,
+                                           std::string* jpeg) {
+  std::string bytes = EncodeJpeg(image);
+  metadata.set_width_px(static_cast<std::uint32_t>(image.cols));
+  metadata.set_height_px(static_cast<std::uint32_t>(image.rows));
+  metadata.set_format("jpeg");
+  metadata = SaveFile(bytes, std::move(metadata));
+  if (jpeg) *jpeg = std::move(bytes);
+  return metadata;
+}
+
+kapfix::v1::PhotoMetadata PhotoStore::SaveFile(const std::string& bytes,
+                                               kapfix::v1::PhotoMetadata metadata) {
   const std::string name =
       metadata.file_name().empty() ? NewFileName(metadata.capture_time_us()) : metadata.file_name();
   if (name.find('/') != std::string::npos || name.starts_with('.')) {
     throw std::runtime_error("photo: invalid file name '" + name + "'");
   }
   metadata.set_file_name(name);
-  metadata.set_width_px(static_cast<std::uint32_t>(image.cols));
-  metadata.set_height_px(static_cast<std::uint32_t>(image.rows));
-  metadata.set_format("jpeg");
   std::string sidecar;
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
@@ -90,7 +103,6 @@ kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::Pho
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   const std::filesystem::path path = dir_ / name;
-  const std::string bytes(encoded.begin(), encoded.end());
   WriteFileAtomically(path, bytes);
   try {
     WriteFileAtomically(SidecarPath(path), sidecar);
@@ -102,7 +114,6 @@ kapfix::v1::PhotoMetadata PhotoStore::Save(const cv::Mat& image, kapfix::v1::Pho
     std::lock_guard lock(mutex_);
     ++count_;
   }
-  if (jpeg) *jpeg = bytes;
   return metadata;
 }
 

@@ -35,6 +35,12 @@ class PhotoStore {
   // Throws std::runtime_error naming the file and the reason (disk full, no permission).
   kapfix::v1::PhotoMetadata Save(const cv::Mat& image, kapfix::v1::PhotoMetadata metadata,
                                  std::string* jpeg);
+  // Stores a file another camera made (PhotoTrigger): `bytes` as they are, with `metadata`,
+  // whose width, height and format the caller fills; the file name as in Save. The same
+  // guarantees as Save: written atomically, never a file without its sidecar.
+  kapfix::v1::PhotoMetadata SaveFile(const std::string& bytes, kapfix::v1::PhotoMetadata metadata);
+  // `image` (BGR) as the JPEG the store keeps; throws std::runtime_error when it cannot.
+  static std::string EncodeJpeg(const cv::Mat& image);
 
   // Photos whose capture time is at or after `since_us`, oldest first.
   std::vector<kapfix::v1::PhotoMetadata> ListSince(std::int64_t since_us) const;

@@ -175,11 +175,13 @@ void PhotoTaker::WriterThread() {
       }
       reserve_refusal_logged_ = false;
       try {
-        std::string bytes;
-        const kapfix::v1::PhotoMetadata saved = store_.Save(job.image, job.metadata, &bytes);
+        const PhotoRequest request{job.metadata.file_name(), job.metadata.note(), job.image};
+        const TakenPhoto taken = cameras_.Take(request, &job.metadata);
+        const kapfix::v1::PhotoMetadata saved = store_.SaveFile(taken.bytes, job.metadata);
+        cameras_.Stored(taken);
         ++saved_;
-        spdlog::info("photo {} saved ({} KiB)", saved.file_name(), bytes.size() / 1024);
-        Offer(saved, bytes);
+        spdlog::info("photo {} saved ({} KiB)", saved.file_name(), taken.bytes.size() / 1024);
+        Offer(saved, taken.bytes);
       } catch (const std::exception& e) {
         ++failed_;
         spdlog::error("photo not saved: {}", e.what());

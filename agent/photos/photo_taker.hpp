@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "agent/photos/photo_cameras.hpp"
 #include "agent/photos/photo_store.hpp"
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/server/stream_sink.hpp"
@@ -42,6 +43,12 @@ class PhotoTaker : public StepObserver {
   // (optional) with `note`; false (and why) when the store cannot take one now.
   bool Request(const std::string& note, std::string* error, std::string* file_name = nullptr);
   void SetInterval(double seconds);  // [s] 0 = off
+  // Any thread. Which camera takes the next photos (PhotoSettings.camera); a still camera
+  // that cannot falls back to the agent's (PhotoCameras).
+  void SetCamera(kapfix::v1::PhotoCamera camera) { cameras_.Select(camera); }
+  void SetStillCamera(std::shared_ptr<PhotoTrigger> still) {
+    cameras_.SetStillCamera(std::move(still));
+  }
   // Publishes again every stored photo taken at or after `since_us`; returns their file
   // names, oldest first. They are listed now and sent by the writer thread, so the names are
   // what a station will get.
@@ -66,6 +73,7 @@ class PhotoTaker : public StepObserver {
   PhotoStore& store_;
   StreamSink& sink_;
   std::function<std::string()> lens_;
+  PhotoCameras cameras_;  // used by the writer thread; thread-safe
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Job> jobs_;

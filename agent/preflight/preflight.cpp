@@ -9,6 +9,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "agent/agent.hpp"
+#include "agent/preflight/still_camera_check.hpp"
+#include "agent/still_camera/gphoto2_still_camera.hpp"
 #include "kapfix/link/curve_key_file.hpp"
 
 namespace kapfix::agent {
@@ -156,6 +158,10 @@ std::vector<PreflightCheck> RunPreflight(const AgentConfig& config,
     checks.push_back(config.servo.backend == ServoBackend::kSim
                          ? Failed("servos", "sim with a real camera", "--servos SPEC or --sim")
                          : CheckServos(config.servo));
+  }
+  if (options.photo_camera == kapfix::v1::PHOTO_CAMERA_GPHOTO2) {
+    Gphoto2StillCamera still;
+    checks.push_back(CheckStillCamera(still));
   }
   checks.push_back(CheckPhotoFolder(config.photos.dir, options.min_free_bytes));
   checks.push_back(CheckClock());

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "agent/config/agent_config.hpp"
+#include "kapfix/v1/settings.pb.h"
 
 namespace kapfix::agent {
 
@@ -23,6 +24,8 @@ struct PreflightOptions {
   bool simulate = false;  // --sim: camera and servos are simulated; devices are not checked
   // [bytes] the photo folder's free space below which the check fails.
   std::uintmax_t min_free_bytes = 200ull << 20;
+  // The camera photos are taken with (--photo-camera): gphoto2 adds the still camera's line.
+  kapfix::v1::PhotoCamera photo_camera = kapfix::v1::PHOTO_CAMERA_AGENT;
 };
 
 // Everything that stops a flight, checked without flying (issue 10): the configuration, the
