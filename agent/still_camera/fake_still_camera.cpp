@@ -20,6 +20,10 @@ bool FakeStillCamera::Open(std::string* model, StillCameraError* error) {
     *error = {StillCameraFault::kAbsent, "no camera found"};
     return false;
   }
+  if (behaviour_ == Behaviour::kHeld) {
+    *error = {StillCameraFault::kBusy, "opening: could not claim the USB device"};
+    return false;
+  }
   open_ = true;
   *model = model_;
   return true;

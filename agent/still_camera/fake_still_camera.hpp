@@ -16,6 +16,7 @@ class FakeStillCamera : public StillCamera {
   enum class Behaviour {
     kSucceeds,
     kAbsent,               // Open finds no camera
+    kHeld,                 // Open: another program holds the camera (busy)
     kBusy,                 // Capture: the camera is busy
     kRefuses,              // Capture: the camera will not capture (e.g. not in PTP mode)
     kVanishesMidDownload,  // Download gives half the file, then fails; unplugged after

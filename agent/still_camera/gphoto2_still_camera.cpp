@@ -37,7 +37,6 @@ StillCameraFault FaultOf(int result, bool transferring) {
       return StillCameraFault::kBusy;
     case GP_ERROR_MODEL_NOT_FOUND:
     case GP_ERROR_IO_USB_FIND:
-      return transferring ? StillCameraFault::kVanished : StillCameraFault::kAbsent;
     case GP_ERROR_IO:
     case GP_ERROR_IO_INIT:
     case GP_ERROR_IO_READ:

@@ -37,6 +37,15 @@ TEST(StillCameraCheckTest, AbsentCameraFailsWithThePtpFix) {
   EXPECT_THAT(check.fix, HasSubstr("set its USB mode to PTP"));
 }
 
+TEST(StillCameraCheckTest, HeldCameraFailsNamingTheProgramsThatHoldOne) {
+  FakeStillCamera camera("jpeg");
+  camera.Script(Behaviour::kHeld);
+  const PreflightCheck check = CheckStillCamera(camera);
+  EXPECT_FALSE(check.pass);
+  EXPECT_EQ(check.detail, "opening: could not claim the USB device");
+  EXPECT_THAT(check.fix, HasSubstr("another program holds the camera"));
+}
+
 TEST(StillCameraCheckTest, RunPreflightChecksTheStillCameraOnlyWhenSelected) {
   kapfix::testing::TempDir temp;
   AgentConfig config = BuiltInConfig(MotionKind::kKite);
