@@ -264,8 +264,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   });
   photos_->SetInterval(config_.photos.interval_s);
   // The still camera is opened at its first photo, so it costs nothing until selected.
-  photos_->SetStillCamera(
-      std::make_shared<StillCameraTrigger>(std::make_unique<Gphoto2StillCamera>()));
+  photos_->SetStillCamera(std::make_shared<StillCameraTrigger>(
+      std::make_unique<Gphoto2StillCamera>(), options_.still_camera_delete));
   photos_->SetCamera(options_.photo_camera);
   video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
   telemetry_publisher_ = std::make_unique<TelemetryPublisher>(

@@ -44,6 +44,8 @@ struct AgentOptions {
   bool insecure = false;
   // The camera photos are taken with (--photo-camera); UNSPECIFIED keeps the configured one.
   kapfix::v1::PhotoCamera photo_camera = kapfix::v1::PHOTO_CAMERA_UNSPECIFIED;
+  // Delete each still-camera photo on the camera once it is stored on the agent.
+  bool still_camera_delete = false;
 };
 
 // kapfix-agent's built-in configuration (no --config): AgentConfig's defaults — everything

@@ -123,6 +123,10 @@ int Main(int argc, char** argv) {
                  "camera for photos: agent (the tracking camera) or gphoto2 (a USB still camera; "
                  "falls back to agent when it cannot)")
       ->check(CLI::IsMember({"agent", "gphoto2"}));
+  bool still_camera_delete = false;
+  app.add_flag("--still-camera-delete", still_camera_delete,
+               "delete each still-camera photo on the camera once stored on the agent (default: "
+               "the camera's card keeps it too)");
   CLI11_PARSE(app, argc, argv);
 
   kapfix::WorldOptions world;
@@ -198,6 +202,7 @@ int Main(int argc, char** argv) {
   options.start_mode = *ParseAgentMode(start_mode);
   options.keep_telemetry = !report_dir.empty();
   options.insecure = insecure;
+  options.still_camera_delete = still_camera_delete;
   if (!photo_camera.empty()) {
     options.photo_camera = photo_camera == "gphoto2" ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
                                                      : kapfix::v1::PHOTO_CAMERA_AGENT;
