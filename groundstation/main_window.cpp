@@ -22,6 +22,7 @@
 #include "groundstation/session/session_tracker.hpp"
 #include "groundstation/settings/calibration_view.hpp"
 #include "groundstation/settings/settings_panel.hpp"
+#include "groundstation/settings/settings_reapply_offer.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/connection_bar.hpp"
 #include "groundstation/status/link_status_bar.hpp"
@@ -76,7 +77,8 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
       lock_on_video_(new LockIndicator(*lock_, LockIndicator::Size::kOnVideo, this)),
       lock_in_status_(new LockIndicator(*lock_, LockIndicator::Size::kStatusBar, this)),
       banner_(new SessionBanner(*parts.view_client, this)),
-      confirmation_(new LockConfirmation(*parts.view_client, *this, this)) {
+      confirmation_(new LockConfirmation(*parts.view_client, *this, this)),
+      reapply_(new SettingsReapplyOffer(*parts.view_client, *settings_, this)) {
   // Space takes the photo even from inside a number field (which keeps its value); Enter and
   // Esc answer a pending question from there too (with none pending they reach the field).
   new PriorityKeys(*this,
@@ -132,6 +134,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   top_layout->setSpacing(0);
   top_layout->addWidget(menus);
   top_layout->addWidget(banner_);
+  top_layout->addWidget(reapply_);
   setMenuWidget(top);
 
   ssp_->setConfirmation(confirmation_);
@@ -215,6 +218,7 @@ void MainWindow::startNewSession(int session, bool restart) {
   plots_->startSession();
   lock_->reset();
   confirmation_->cancel();
+  reapply_->arm();
 }
 
 void MainWindow::showReplay(RecordingControls& recording) {

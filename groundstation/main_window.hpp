@@ -28,6 +28,7 @@ class RecordingControls;
 class SessionBanner;
 class SessionTracker;
 class SettingsPanel;
+class SettingsReapplyOffer;
 class SspPanel;
 class TelemetryPlots;
 class VideoPanel;
@@ -64,6 +65,7 @@ class MainWindow final : public QMainWindow {
   LockIndicator& lockInStatusBar() const { return *lock_in_status_; }
   SessionBanner& banner() const { return *banner_; }
   SessionTracker& sessions() const { return *sessions_; }
+  SettingsReapplyOffer& reapplyOffer() const { return *reapply_; }
   LockConfirmation& confirmation() const { return *confirmation_; }
   // The window a replay is shown in; nullptr while none is open.
   MainWindow* replayWindow() const { return replay_window_.get(); }
@@ -100,6 +102,7 @@ class MainWindow final : public QMainWindow {
   LockIndicator* lock_in_status_;
   SessionBanner* banner_;
   LockConfirmation* confirmation_;
+  SettingsReapplyOffer* reapply_;
   QDockWidget* plots_dock_ = nullptr;
   QDockWidget* side_dock_ = nullptr;
   std::unique_ptr<MainWindow> replay_window_;

@@ -3,17 +3,30 @@
 namespace kapfix::station {
 
 SessionTracker::SessionTracker(AgentClient& client, QObject* parent) : QObject(parent) {
-  connect(&client, &AgentClient::telemetryReceived, this, &SessionTracker::onTelemetry);
+  connect(&client, &AgentClient::telemetryReceived, this,
+          [this](const kapfix::v1::Telemetry& telemetry) { onHeader(telemetry.header(), true); });
+  connect(&client, &AgentClient::stateReceived, this,
+          [this](const kapfix::v1::AgentState& state) { onHeader(state.header(), false); });
 }
 
-void SessionTracker::onTelemetry(const kapfix::v1::Telemetry& telemetry) {
-  const std::uint64_t sequence = telemetry.header().sequence();
-  const QString agent_id = QString::fromStdString(telemetry.header().agent_id());
+void SessionTracker::onHeader(const kapfix::v1::Header& header, bool sequenced) {
+  const std::uint64_t sequence = header.sequence();
+  const std::uint64_t boot_id = header.boot_id();
+  const QString agent_id = QString::fromStdString(header.agent_id());
   const bool first = session_ == 0;
-  // A sequence that does not go up is a new agent process (a lost message only skips ahead).
-  const bool restarted =
-      !first && ((sequence != 0 && sequence <= last_sequence_) || agent_id != agent_id_);
-  if (sequence != 0) last_sequence_ = sequence;
+  bool restarted = !first && agent_id != agent_id_;
+  if (boot_id != 0) {
+    // The boot id decides: the sequence may start again for other reasons (a replay).
+    restarted = restarted || (!first && boot_id != boot_id_);
+    boot_id_ = boot_id;
+  } else if (sequenced) {
+    // No boot id: a telemetry sequence that does not go up is a new agent process (a lost
+    // message only skips ahead).
+    restarted = restarted || (!first && sequence != 0 && sequence <= last_sequence_);
+  } else if (first) {
+    return;  // an older agent's state alone does not start a session: its telemetry does
+  }
+  if (sequenced && sequence != 0) last_sequence_ = sequence;
   agent_id_ = agent_id;
   if (!first && !restarted) return;
   ++session_;

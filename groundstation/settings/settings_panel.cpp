@@ -132,6 +132,16 @@ QString ValueIn(const AgentState& state, const kapfix::v1::SettingEntry& setting
   }
 }
 
+// The agent reports a float, the operator typed a decimal: "0.60000002" is "0.6".
+bool SameValue(const QString& a, const QString& b) {
+  bool a_number = false;
+  bool b_number = false;
+  const double x = a.toDouble(&a_number);
+  const double y = b.toDouble(&b_number);
+  if (a_number && b_number) return static_cast<float>(x) == static_cast<float>(y);
+  return a == b;
+}
+
 std::vector<Group> Groups() {
   std::vector<Group> groups;
   for (const kapfix::ctl::SettingKey& key : kapfix::ctl::SettingKeys()) {
@@ -192,15 +202,39 @@ void SettingsPanel::send(const QString& key, const QString& value) {
     return;
   }
   setting->markPending();
-  client_.sendCommand(std::move(*command),
-                      [setting = QPointer(setting)](const CommandOutcome& outcome) {
-                        if (setting.isNull()) return;
-                        if (outcome.ok) {
-                          setting->markAccepted();
-                        } else {
-                          setting->markRefused(outcome.reason);
-                        }
-                      });
+  client_.sendCommand(std::move(*command), [self = QPointer(this), setting = QPointer(setting), key,
+                                            value](const CommandOutcome& outcome) {
+    if (self.isNull() || setting.isNull()) return;
+    if (outcome.ok) {
+      self->operator_values_.insert(key, value);
+      setting->markAccepted();
+    } else {
+      setting->markRefused(outcome.reason);
+    }
+  });
+}
+
+std::vector<SettingsPanel::Difference> SettingsPanel::differencesFrom(
+    const AgentState& state) const {
+  std::vector<Difference> differences;
+  for (const Group& group : TheGroups()) {
+    for (const Entry& entry : group.entries) {
+      const auto mine = operator_values_.constFind(entry.spec.key);
+      if (mine == operator_values_.constEnd()) continue;
+      const QString agent = ValueIn(state, entry.setting);
+      if (!SameValue(agent, *mine)) differences.push_back({entry.spec.key, agent, *mine});
+    }
+  }
+  return differences;
+}
+
+void SettingsPanel::reapply(const QStringList& keys) {
+  for (const QString& key : keys) {
+    const auto mine = operator_values_.constFind(key);
+    if (mine == operator_values_.constEnd() || row(key) == nullptr) continue;
+    row(key)->showAgentValue(*mine);
+    send(key, *mine);
+  }
 }
 
 void SettingsPanel::showState(const AgentState& state) {

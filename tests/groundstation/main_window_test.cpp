@@ -18,6 +18,9 @@
 #include "groundstation/plots/telemetry_plots.hpp"
 #include "groundstation/session/session_banner.hpp"
 #include "groundstation/session/session_tracker.hpp"
+#include "groundstation/settings/setting_row.hpp"
+#include "groundstation/settings/settings_panel.hpp"
+#include "groundstation/settings/settings_reapply_offer.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/link_status_bar.hpp"
 #include "groundstation/status/lock_indicator.hpp"
@@ -220,6 +223,77 @@ TEST(MainWindow, RestartedAgentIsAnnouncedAndTheOldSessionCleared) {
   ASSERT_TRUE(window.banner().dismissButton().isVisible());
   QTest::mouseClick(&window.banner().dismissButton(), Qt::LeftButton);
   EXPECT_TRUE(window.banner().text().isEmpty()) << window.banner().text().toStdString();
+}
+
+TEST(MainWindow, ARestartedAgentThatResumedIsAnnouncedAsResumed) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  client.setLink(Up());
+  client.setBootId(11);
+  Fixate(client, 1, 3, 1);
+  client.restartAgent(12);
+  kapfix::v1::AgentState state;
+  state.set_mode(kapfix::v1::MODE_FIXATE);
+  state.set_slice(8);
+  state.set_resumed(true);
+  client.publish(state);
+  EXPECT_EQ(window.sessions().restarts(), 1);
+  const QString banner = window.banner().text();
+  EXPECT_TRUE(banner.startsWith(QStringLiteral("AGENT RESTARTED"))) << banner.toStdString();
+  EXPECT_TRUE(banner.contains(QStringLiteral("RESUMED"))) << banner.toStdString();
+  EXPECT_TRUE(banner.contains(QStringLiteral("slice 8"))) << banner.toStdString();
+  EXPECT_TRUE(window.status().modeText().contains(QStringLiteral("resumed")))
+      << window.status().modeText().toStdString();
+}
+
+// The operator's own settings of this run, not the agent's defaults, are what the station
+// offers back after a restart; nothing is sent until the operator says so.
+TEST(MainWindow, AfterARestartTheStationOffersToReapplyTheOperatorsDifferingSettings) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  client.setLink(Up());
+  client.setBootId(21);
+  Fixate(client, 1, 3, 1);
+  auto* p = qobject_cast<QDoubleSpinBox*>(window.settings().row(QStringLiteral("p"))->editor());
+  ASSERT_NE(p, nullptr);
+  p->setValue(0.6);
+  ProcessEvents();  // the fake accepts it
+  const std::size_t sent = client.commands().size();
+
+  client.restartAgent(22);
+  kapfix::v1::AgentState state;
+  state.mutable_gains()->set_p(1.0F);  // the restarted agent's default
+  client.publish(state);
+  const SettingsReapplyOffer& offer = window.reapplyOffer();
+  EXPECT_FALSE(offer.isHidden());
+  EXPECT_EQ(offer.keys(), QStringList{QStringLiteral("p")});
+  EXPECT_TRUE(offer.text().contains(QStringLiteral("p is 1 (yours: 0.6)")))
+      << offer.text().toStdString();
+  EXPECT_EQ(client.commands().size(), sent) << "never re-applied by itself";
+
+  offer.reapplyButton().click();
+  ASSERT_EQ(client.commands().size(), sent + 1);
+  ASSERT_TRUE(client.commands().back().has_set_gains());
+  EXPECT_FLOAT_EQ(client.commands().back().set_gains().p(), 0.6F);
+  EXPECT_TRUE(offer.isHidden());
+}
+
+TEST(MainWindow, NoReapplyOfferWhenTheRestartedAgentKeptTheOperatorsSettings) {
+  FakeAgentClient client;
+  MainWindow window({&client, nullptr, nullptr});
+  client.setLink(Up());
+  client.setBootId(31);
+  Fixate(client, 1, 3, 1);
+  auto* p = qobject_cast<QDoubleSpinBox*>(window.settings().row(QStringLiteral("p"))->editor());
+  ASSERT_NE(p, nullptr);
+  p->setValue(0.6);
+  ProcessEvents();
+  client.restartAgent(32);
+  kapfix::v1::AgentState state;
+  state.mutable_gains()->set_p(0.6F);  // resumed with the operator's gains
+  client.publish(state);
+  EXPECT_EQ(window.sessions().restarts(), 1);
+  EXPECT_TRUE(window.reapplyOffer().isHidden());
 }
 
 TEST(MainWindow, FitsALaptopScreenWithTheVideoFirst) {
