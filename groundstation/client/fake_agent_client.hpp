@@ -31,6 +31,8 @@ class FakeAgentClient final : public AgentClient {
 
   // Later commands of `kind` are refused with this reason (ERROR_CODE_OUT_OF_RANGE).
   void refuse(kapfix::v1::Command::CommandCase kind, const std::string& reason);
+  // Later commands of `kind` are accepted again.
+  void accept(kapfix::v1::Command::CommandCase kind) { refusals_.erase(kind); }
   // Later commands get no reply at all (the link dropped them).
   void setSilent(bool silent) { silent_ = silent; }
   // The state returned to request_state.

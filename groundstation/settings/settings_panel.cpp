@@ -41,6 +41,7 @@ QString GroupTitle(const FieldDescriptor& command_field) {
   if (name == "set_gains") return QStringLiteral("Controller");
   if (name == "set_search") return QStringLiteral("Search");
   if (name == "set_lens") return QStringLiteral("Lens");
+  if (name == "set_photo" || name == "set_photo_interval_s") return QStringLiteral("Photos");
   return QStringLiteral("Camera and video");
 }
 
@@ -66,11 +67,17 @@ QStringList Words(const google::protobuf::EnumDescriptor& type) {
 SettingRow::Spec SpecOf(const kapfix::ctl::SettingKey& key) {
   const FieldDescriptor& field = *key.entry.field;
   const kapfix::v1::SettingOptions& o = *key.entry.options;
-  SettingRow::Spec spec{QString::fromStdString(key.name), Label(key), Kind::kText, 0, 0, 0, 0, {}};
-  // The editor accepts the schema's range (0 too where 0 means off); the step is about a
+  SettingRow::Spec spec;
+  spec.key = QString::fromStdString(key.name);
+  spec.label = Label(key);
+  spec.kind = Kind::kText;
+  // The row checks the schema's range (0 too where 0 means off); the step is about a
   // hundredth of it.
-  spec.minimum = o.zero_means_off() ? 0 : o.min();
+  spec.minimum = o.min();
   spec.maximum = o.max();
+  spec.zero_means_off = o.zero_means_off();
+  spec.unit = QString::fromStdString(o.unit());
+  spec.help = QString::fromStdString(o.help());
   spec.step =
       o.max() > o.min() ? std::pow(10.0, std::floor(std::log10(o.max() - o.min())) - 2) : 1.0;
   switch (field.cpp_type()) {
@@ -101,6 +108,20 @@ SettingRow::Spec SpecOf(const kapfix::ctl::SettingKey& key) {
                     QStringLiteral("pyr")};
   }
   return spec;
+}
+
+// The agent's reason in the operator's words: the field's name in the command
+// ("set_camera.gain_db = 99: must be in [0, 48] dB") becomes what the setting is ("camera
+// analogue gain = 99: ...").
+QString PlainReason(const QString& reason, const kapfix::v1::SettingEntry& setting,
+                    const QString& help) {
+  QString name = QString::fromStdString(setting.command_field->name());
+  if (setting.field != setting.command_field) {
+    name += QLatin1Char('.') + QString::fromStdString(setting.field->name());
+  }
+  QString plain = reason;
+  plain.replace(name, help);
+  return plain;
 }
 
 // A setting's value in the agent's state, as setting text: AgentState holds each settings
@@ -162,6 +183,15 @@ const std::vector<Group>& TheGroups() {
   return groups;
 }
 
+const Entry* EntryOf(const QString& key) {
+  for (const Group& group : TheGroups()) {
+    for (const Entry& entry : group.entries) {
+      if (entry.spec.key == key) return &entry;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 SettingsPanel::SettingsPanel(AgentClient& client, QWidget* parent)
@@ -209,7 +239,10 @@ void SettingsPanel::send(const QString& key, const QString& value) {
       self->operator_values_.insert(key, value);
       setting->markAccepted();
     } else {
-      setting->markRefused(outcome.reason);
+      const Entry* entry = EntryOf(key);
+      setting->markRefused(entry == nullptr
+                               ? outcome.reason
+                               : PlainReason(outcome.reason, entry->setting, entry->spec.help));
     }
   });
 }
