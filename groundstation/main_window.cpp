@@ -25,6 +25,7 @@
 #include "groundstation/settings/settings_reapply_offer.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/connection_bar.hpp"
+#include "groundstation/status/device_health_view.hpp"
 #include "groundstation/status/link_status_bar.hpp"
 #include "groundstation/status/lock_indicator.hpp"
 #include "groundstation/status/lock_monitor.hpp"
@@ -73,6 +74,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
       photos_(new PhotosPanel(*parts.view_client, this)),
       events_(new EventLog(*parts.view_client, this)),
       status_(new LinkStatusBar(*parts.view_client, this)),
+      devices_(new DeviceHealthView(*parts.view_client, this)),
       lock_(new LockMonitor(*parts.view_client, LockQualityOptions{}, this)),
       lock_on_video_(new LockIndicator(*lock_, LockIndicator::Size::kOnVideo, this)),
       lock_in_status_(new LockIndicator(*lock_, LockIndicator::Size::kStatusBar, this)),
@@ -111,6 +113,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   ssp_dock->raise();
   side_dock_ = ssp_dock;
   statusBar()->addWidget(lock_in_status_);
+  statusBar()->addWidget(devices_);
   statusBar()->addWidget(status_, 1);
 
   auto* toolbar = addToolBar(tr("Station"));

@@ -17,6 +17,7 @@ namespace kapfix::station {
 
 class AgentClient;
 class ConnectionBar;
+class DeviceHealthView;
 class EventLog;
 class LinkStatusBar;
 class LockConfirmation;
@@ -60,6 +61,7 @@ class MainWindow final : public QMainWindow {
   PhotosPanel& photos() const { return *photos_; }
   EventLog& events() const { return *events_; }
   LinkStatusBar& status() const { return *status_; }
+  DeviceHealthView& devices() const { return *devices_; }
   LockMonitor& lock() const { return *lock_; }
   LockIndicator& lockOnVideo() const { return *lock_on_video_; }
   LockIndicator& lockInStatusBar() const { return *lock_in_status_; }
@@ -97,6 +99,7 @@ class MainWindow final : public QMainWindow {
   PhotosPanel* photos_;
   EventLog* events_;
   LinkStatusBar* status_;
+  DeviceHealthView* devices_;
   LockMonitor* lock_;
   LockIndicator* lock_on_video_;
   LockIndicator* lock_in_status_;
