@@ -8,6 +8,7 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QTabBar>
 #include <QToolBar>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -102,7 +103,8 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
 
   plots_dock_ = Dock(this, tr("Graphs"), QStringLiteral("graphsDock"), plots_, Fit::kSqueeze);
   addDockWidget(Qt::BottomDockWidgetArea, plots_dock_);
-  auto* ssp_dock = Dock(this, tr("Slice selection"), QStringLiteral("sspDock"), ssp_);
+  // Short tab titles: four side by side fit the side panel with a large font too.
+  auto* ssp_dock = Dock(this, tr("Slices"), QStringLiteral("sspDock"), ssp_);
   auto* settings_dock = Dock(this, tr("Settings"), QStringLiteral("settingsDock"), settings_);
   auto* photos_dock = Dock(this, tr("Photos"), QStringLiteral("photosDock"), photos_);
   auto* events_dock = Dock(this, tr("Events"), QStringLiteral("eventsDock"), events_);
@@ -238,6 +240,11 @@ void MainWindow::showReplay(RecordingControls& recording) {
 
 void MainWindow::shareSpace() {
   if (side_dock_ == nullptr || plots_dock_ == nullptr) return;
+  // A tab title is never cut short: where the tabs do not fit, the bar scrolls instead.
+  for (QTabBar* tabs : findChildren<QTabBar*>()) {
+    tabs->setElideMode(Qt::ElideNone);
+    tabs->setUsesScrollButtons(true);
+  }
   resizeDocks({side_dock_}, {std::min(kSideMaxPx, static_cast<int>(width() * kSideShare))},
               Qt::Horizontal);
   resizeDocks({plots_dock_}, {std::min(kGraphsMaxPx, static_cast<int>(height() * kGraphsShare))},
