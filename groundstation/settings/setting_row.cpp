@@ -190,6 +190,12 @@ void SettingRow::showAgentValue(const QString& value) {
   setEditorValue(value);
 }
 
+void SettingRow::restoreOperatorValue(const QString& value) {
+  refused_ = false;
+  markOutOfRange(false);
+  setEditorValue(value);
+}
+
 void SettingRow::setEditorValue(const QString& value) {
   const QSignalBlocker blocker(editor_);
   switch (kind_) {

@@ -51,6 +51,8 @@ class SettingRow final : public QWidget {
   QString value() const;
   // Shows the agent's value without sending anything; ignored while a change is pending.
   void showAgentValue(const QString& value);
+  // Puts the operator's own `value` back in the editor (clearing any mark), without sending.
+  void restoreOperatorValue(const QString& value);
 
   void markPending();
   void markAccepted();

@@ -265,7 +265,7 @@ void SettingsPanel::reapply(const QStringList& keys) {
   for (const QString& key : keys) {
     const auto mine = operator_values_.constFind(key);
     if (mine == operator_values_.constEnd() || row(key) == nullptr) continue;
-    row(key)->showAgentValue(*mine);
+    row(key)->restoreOperatorValue(*mine);
     send(key, *mine);
   }
 }

@@ -279,6 +279,7 @@ TEST(MainWindow, AfterARestartTheStationOffersToReapplyTheOperatorsDifferingSett
   ASSERT_EQ(client.commands().size(), sent + 1);
   ASSERT_TRUE(client.commands().back().has_set_gains());
   EXPECT_FLOAT_EQ(client.commands().back().set_gains().p(), 0.6F);
+  EXPECT_EQ(window.settings().row(QStringLiteral("p"))->value(), QStringLiteral("0.6"));
   EXPECT_TRUE(offer.isHidden());
 }
 
