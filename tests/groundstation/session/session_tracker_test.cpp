@@ -90,5 +90,21 @@ TEST(SessionTracker, AStateWithANewBootIdIsARestart) {
   EXPECT_EQ(tracker.restarts(), 1);
 }
 
+// The state inside a reply to request_state may come without a stamped header: it is not
+// another agent.
+TEST(SessionTracker, AStateWithoutBootIdOrAgentIdIsNotARestart) {
+  FakeAgentClient client;
+  SessionTracker tracker(client);
+  client.setBootId(7);
+  client.publish(MakeTelemetry(1, 0, 0, 1'000'000));
+  kapfix::v1::Command request;
+  request.mutable_request_state();
+  client.sendCommand(request);  // the fake replies with an unstamped AgentState
+  testing::ProcessEvents();
+  client.publish(MakeTelemetry(2, 0, 0, 1'033'000));
+  EXPECT_EQ(tracker.session(), 1);
+  EXPECT_EQ(tracker.restarts(), 0);
+}
+
 }  // namespace
 }  // namespace kapfix::station
