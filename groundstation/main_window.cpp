@@ -8,6 +8,7 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QTabBar>
 #include <QToolBar>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -22,8 +23,10 @@
 #include "groundstation/session/session_tracker.hpp"
 #include "groundstation/settings/calibration_view.hpp"
 #include "groundstation/settings/settings_panel.hpp"
+#include "groundstation/settings/settings_reapply_offer.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
 #include "groundstation/status/connection_bar.hpp"
+#include "groundstation/status/device_health_view.hpp"
 #include "groundstation/status/link_status_bar.hpp"
 #include "groundstation/status/lock_indicator.hpp"
 #include "groundstation/status/lock_monitor.hpp"
@@ -72,11 +75,13 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
       photos_(new PhotosPanel(*parts.view_client, this)),
       events_(new EventLog(*parts.view_client, this)),
       status_(new LinkStatusBar(*parts.view_client, this)),
+      devices_(new DeviceHealthView(*parts.view_client, this)),
       lock_(new LockMonitor(*parts.view_client, LockQualityOptions{}, this)),
       lock_on_video_(new LockIndicator(*lock_, LockIndicator::Size::kOnVideo, this)),
       lock_in_status_(new LockIndicator(*lock_, LockIndicator::Size::kStatusBar, this)),
       banner_(new SessionBanner(*parts.view_client, this)),
-      confirmation_(new LockConfirmation(*parts.view_client, *this, this)) {
+      confirmation_(new LockConfirmation(*parts.view_client, *this, this)),
+      reapply_(new SettingsReapplyOffer(*parts.view_client, *settings_, this)) {
   // Space takes the photo even from inside a number field (which keeps its value); Enter and
   // Esc answer a pending question from there too (with none pending they reach the field).
   new PriorityKeys(*this,
@@ -98,7 +103,8 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
 
   plots_dock_ = Dock(this, tr("Graphs"), QStringLiteral("graphsDock"), plots_, Fit::kSqueeze);
   addDockWidget(Qt::BottomDockWidgetArea, plots_dock_);
-  auto* ssp_dock = Dock(this, tr("Slice selection"), QStringLiteral("sspDock"), ssp_);
+  // Short tab titles: four side by side fit the side panel with a large font too.
+  auto* ssp_dock = Dock(this, tr("Slices"), QStringLiteral("sspDock"), ssp_);
   auto* settings_dock = Dock(this, tr("Settings"), QStringLiteral("settingsDock"), settings_);
   auto* photos_dock = Dock(this, tr("Photos"), QStringLiteral("photosDock"), photos_);
   auto* events_dock = Dock(this, tr("Events"), QStringLiteral("eventsDock"), events_);
@@ -109,6 +115,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   ssp_dock->raise();
   side_dock_ = ssp_dock;
   statusBar()->addWidget(lock_in_status_);
+  statusBar()->addWidget(devices_);
   statusBar()->addWidget(status_, 1);
 
   auto* toolbar = addToolBar(tr("Station"));
@@ -132,6 +139,7 @@ MainWindow::MainWindow(const MainWindowParts& parts, QWidget* parent)
   top_layout->setSpacing(0);
   top_layout->addWidget(menus);
   top_layout->addWidget(banner_);
+  top_layout->addWidget(reapply_);
   setMenuWidget(top);
 
   ssp_->setConfirmation(confirmation_);
@@ -215,6 +223,7 @@ void MainWindow::startNewSession(int session, bool restart) {
   plots_->startSession();
   lock_->reset();
   confirmation_->cancel();
+  reapply_->arm();
 }
 
 void MainWindow::showReplay(RecordingControls& recording) {
@@ -231,6 +240,11 @@ void MainWindow::showReplay(RecordingControls& recording) {
 
 void MainWindow::shareSpace() {
   if (side_dock_ == nullptr || plots_dock_ == nullptr) return;
+  // A tab title is never cut short: where the tabs do not fit, the bar scrolls instead.
+  for (QTabBar* tabs : findChildren<QTabBar*>()) {
+    tabs->setElideMode(Qt::ElideNone);
+    tabs->setUsesScrollButtons(true);
+  }
   resizeDocks({side_dock_}, {std::min(kSideMaxPx, static_cast<int>(width() * kSideShare))},
               Qt::Horizontal);
   resizeDocks({plots_dock_}, {std::min(kGraphsMaxPx, static_cast<int>(height() * kGraphsShare))},

@@ -17,6 +17,7 @@ namespace kapfix::station {
 
 class AgentClient;
 class ConnectionBar;
+class DeviceHealthView;
 class EventLog;
 class LinkStatusBar;
 class LockConfirmation;
@@ -28,6 +29,7 @@ class RecordingControls;
 class SessionBanner;
 class SessionTracker;
 class SettingsPanel;
+class SettingsReapplyOffer;
 class SspPanel;
 class TelemetryPlots;
 class VideoPanel;
@@ -59,11 +61,13 @@ class MainWindow final : public QMainWindow {
   PhotosPanel& photos() const { return *photos_; }
   EventLog& events() const { return *events_; }
   LinkStatusBar& status() const { return *status_; }
+  DeviceHealthView& devices() const { return *devices_; }
   LockMonitor& lock() const { return *lock_; }
   LockIndicator& lockOnVideo() const { return *lock_on_video_; }
   LockIndicator& lockInStatusBar() const { return *lock_in_status_; }
   SessionBanner& banner() const { return *banner_; }
   SessionTracker& sessions() const { return *sessions_; }
+  SettingsReapplyOffer& reapplyOffer() const { return *reapply_; }
   LockConfirmation& confirmation() const { return *confirmation_; }
   // The window a replay is shown in; nullptr while none is open.
   MainWindow* replayWindow() const { return replay_window_.get(); }
@@ -95,11 +99,13 @@ class MainWindow final : public QMainWindow {
   PhotosPanel* photos_;
   EventLog* events_;
   LinkStatusBar* status_;
+  DeviceHealthView* devices_;
   LockMonitor* lock_;
   LockIndicator* lock_on_video_;
   LockIndicator* lock_in_status_;
   SessionBanner* banner_;
   LockConfirmation* confirmation_;
+  SettingsReapplyOffer* reapply_;
   QDockWidget* plots_dock_ = nullptr;
   QDockWidget* side_dock_ = nullptr;
   std::unique_ptr<MainWindow> replay_window_;

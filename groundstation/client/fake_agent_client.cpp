@@ -69,6 +69,7 @@ void FakeAgentClient::publish(const google::protobuf::Message& message) {
     auto* header = static_cast<kapfix::v1::Header*>(
         stamped->GetReflection()->MutableMessage(stamped.get(), field));
     kapfix::v1::Stamp(header, kFakeAgentId, ++sequence_);
+    header->set_boot_id(boot_id_);
   }
   const kapfix::v1::Envelope envelope = kapfix::v1::Encode(*stamped);
   deliverMessage(envelope.topic, envelope.payload, kapfix::v1::NowMicros());

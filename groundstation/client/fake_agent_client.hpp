@@ -31,6 +31,8 @@ class FakeAgentClient final : public AgentClient {
 
   // Later commands of `kind` are refused with this reason (ERROR_CODE_OUT_OF_RANGE).
   void refuse(kapfix::v1::Command::CommandCase kind, const std::string& reason);
+  // Later commands of `kind` are accepted again.
+  void accept(kapfix::v1::Command::CommandCase kind) { refusals_.erase(kind); }
   // Later commands get no reply at all (the link dropped them).
   void setSilent(bool silent) { silent_ = silent; }
   // The state returned to request_state.
@@ -39,8 +41,14 @@ class FakeAgentClient final : public AgentClient {
   // Emits `message` as if it had arrived on its topic (stamped with a header first).
   void publish(const google::protobuf::Message& message);
   void setLink(const LinkState& state);
-  // A new agent process from now on: its stream sequences start again at 1.
-  void restartAgent() { sequence_ = 0; }
+  // A new agent process from now on: its stream sequences start again at 1, and its
+  // messages carry `boot_id` (0: none, as an older agent).
+  void restartAgent(std::uint64_t boot_id = 0) {
+    sequence_ = 0;
+    boot_id_ = boot_id;
+  }
+  // The boot id every message carries from now on (0: none).
+  void setBootId(std::uint64_t boot_id) { boot_id_ = boot_id; }
 
  private:
   std::vector<kapfix::v1::Command> commands_;
@@ -49,6 +57,7 @@ class FakeAgentClient final : public AgentClient {
   kapfix::v1::AgentState agent_state_;
   LinkState state_;
   std::uint64_t sequence_ = 0;
+  std::uint64_t boot_id_ = 0;
 };
 
 }  // namespace kapfix::station

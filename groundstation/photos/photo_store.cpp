@@ -49,6 +49,9 @@ std::optional<SavedPhoto> PhotoStore::add(const kapfix::v1::Photo& chunk) {
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
   options.preserve_proto_field_names = true;
+  // Every quality field, also a false lock_lost or a 0 px blur: a missing one would read as
+  // "not measured".
+  options.always_print_primitive_fields = true;
   (void)google::protobuf::util::MessageToJsonString(photo->metadata, &json, options);
   saved.sidecar_path = sidecarPathFor(saved.image_path);
   QSaveFile sidecar(saved.sidecar_path);

@@ -13,6 +13,9 @@
 #include <QVBoxLayout>
 #include <stdexcept>
 
+#include "groundstation/photos/photo_quality.hpp"
+#include "groundstation/photos/photo_quality_table.hpp"
+
 namespace kapfix::station {
 namespace {
 
@@ -31,6 +34,7 @@ PhotosPanel::PhotosPanel(AgentClient& client, QWidget* parent)
       interval_s_(new QDoubleSpinBox(this)),
       folder_edit_(new QLineEdit(this)),
       gallery_(new QListWidget(this)),
+      quality_(new PhotoQualityTable(this)),
       message_(new QLabel(this)) {
   capture_->setShortcut(QKeySequence(Qt::Key_Space));
   capture_->setToolTip(tr("Save a stabilised photo on the agent and fetch it (Space)"));
@@ -77,7 +81,9 @@ PhotosPanel::PhotosPanel(AgentClient& client, QWidget* parent)
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(top);
   layout->addLayout(folder_row);
-  layout->addWidget(gallery_, 1);
+  layout->addWidget(gallery_);
+  quality_->setMinimumHeight(160);
+  layout->addWidget(quality_, 1);
   layout->addWidget(message_);
 
   connect(capture_, &QAction::triggered, this, &PhotosPanel::capture);
@@ -91,6 +97,12 @@ PhotosPanel::PhotosPanel(AgentClient& client, QWidget* parent)
           [this] { QDesktopServices::openUrl(QUrl::fromLocalFile(store_.folder())); });
   connect(gallery_, &QListWidget::itemActivated, this, [](QListWidgetItem* item) {
     QDesktopServices::openUrl(QUrl::fromLocalFile(item->data(Qt::UserRole).toString()));
+  });
+  connect(quality_, &QTableWidget::itemActivated, this, [this](QTableWidgetItem* item) {
+    const QTableWidgetItem* name = quality_->item(item->row(), PhotoQualityTable::kName);
+    if (name != nullptr) {
+      QDesktopServices::openUrl(QUrl::fromLocalFile(name->data(Qt::UserRole).toString()));
+    }
   });
   connect(&client_, &AgentClient::photoChunkReceived, this, &PhotosPanel::receive);
   connect(&client_, &AgentClient::stateReceived, this, [this](const kapfix::v1::AgentState& state) {
@@ -161,12 +173,16 @@ void PhotosPanel::receive(const kapfix::v1::Photo& chunk) {
           QPixmap::fromImage(image.scaledToHeight(kThumbnailPx, Qt::SmoothTransformation)));
     }
     item->setData(Qt::UserRole, saved->image_path);
+    const QString flags = QString::fromStdString(JudgePhoto(saved->metadata).flags);
     item->setToolTip(tr("%1\nslice %2, confidence %3")
                          .arg(saved->image_path)
                          .arg(saved->metadata.slice())
-                         .arg(static_cast<double>(saved->metadata.confidence()), 0, 'f', 2));
+                         .arg(static_cast<double>(saved->metadata.confidence()), 0, 'f', 2) +
+                     (flags.isEmpty() ? QString() : QStringLiteral("\n") + flags));
+    if (!flags.isEmpty()) item->setForeground(QColor(0xb3, 0x26, 0x1e));
     gallery_->addItem(item);
     gallery_->scrollToItem(item);
+    quality_->addPhoto(*saved);
   }
   emit photoSaved(*saved);
 }

@@ -3,7 +3,8 @@
 // Stabilised photos (issue 4): capture now (Space), capture every N seconds (the agent's own
 // timer, so it keeps going while the link is down), the folder they are saved in (kept
 // between runs), and a gallery strip of what arrived. Every photo the agent publishes is
-// saved — also those it resends after a link loss (LinkResync asks for them).
+// saved — also those it resends after a link loss (LinkResync asks for them) — and listed
+// with the quality the agent measured, sortable, blurred or off-target ones flagged.
 
 #include <QAction>
 #include <QCheckBox>
@@ -19,6 +20,8 @@
 
 namespace kapfix::station {
 
+class PhotoQualityTable;
+
 class PhotosPanel final : public QWidget {
   Q_OBJECT
 
@@ -29,6 +32,7 @@ class PhotosPanel final : public QWidget {
 
   QAction* captureAction() const { return capture_; }
   QListWidget& gallery() const { return *gallery_; }
+  PhotoQualityTable& quality() const { return *quality_; }
   QString folder() const { return store_.folder(); }
   void setFolder(const QString& folder);
   QString messageText() const { return message_->text(); }
@@ -51,6 +55,7 @@ class PhotosPanel final : public QWidget {
   QDoubleSpinBox* interval_s_;
   QLineEdit* folder_edit_;
   QListWidget* gallery_;
+  PhotoQualityTable* quality_;
   QLabel* message_;
   QSet<QString> shown_;  // file names already in the gallery
 };

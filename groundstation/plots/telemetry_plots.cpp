@@ -40,6 +40,7 @@ const std::array<CurveStyle, TelemetryPlots::kCurveCount> kCurves = {{
 // (axis titles would not fit the small plots of a laptop screen).
 const std::array<double, kRects> kRectStretch = {1.8, 0.7, 0.7, 0.9};
 const std::array<int, kRects> kRectTicks = {2, 2, 2, 2};
+constexpr int kTickRows = 3;  // tick labels each plot has room for, one above the other
 
 double Value(const TelemetrySample& sample, int curve) {
   switch (static_cast<TelemetryPlots::Curve>(curve)) {
@@ -121,6 +122,9 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     rect->axis(QCPAxis::atLeft)->setTickLabelFont(small);
     rect->axis(QCPAxis::atBottom)->setTickLabelFont(small);
     rect->setMinimumMargins(QMargins(0, 2, 0, 2));
+    // Room for three tick labels one above the other (the ±10 px scale's -10, 0, 10), so
+    // that they do not overlap however large the font (issue 14).
+    rect->setMinimumSize(0, kTickRows * QFontMetrics(small).height() + 4);
     rect->axis(QCPAxis::atBottom)->setLabel(i == kRects - 1 ? tr("capture time [s]") : QString());
     rect->axis(QCPAxis::atBottom)->setTickLabels(i == kRects - 1);
     rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
@@ -141,6 +145,10 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     plot_->plotLayout()->setRowStretchFactor(i, kRectStretch[static_cast<std::size_t>(i)]);
   }
   plot_->plotLayout()->setColumnStretchFactor(1, 0.01);  // the legends take what they need
+  // The widget asks for the plots' room plus the time axis' ticks and title below them: a
+  // dock squeezed below it would stack the plots over each other.
+  plot_->setMinimumHeight(kRects * (kTickRows * QFontMetrics(small).height() + 4) +
+                          2 * QFontMetrics(font()).height() + 8);
   rects[1]->axis(QCPAxis::atLeft)->setRange(0, 1.05);
   // The distance reaches 10⁷..10⁸: short "5e+07"-style labels, few of them.
   rects[2]->axis(QCPAxis::atLeft)->setNumberFormat(QStringLiteral("gb"));

@@ -3,6 +3,8 @@
 #include <QHBoxLayout>
 #include <QTime>
 
+#include "groundstation/status/mode_name.hpp"
+
 namespace kapfix::station {
 namespace {
 
@@ -26,7 +28,7 @@ SessionBanner::SessionBanner(AgentClient& client, QWidget* parent)
   layout->addWidget(dismiss_);
   dismiss_->setToolTip(tr("The operator has seen the restart"));
   connect(dismiss_, &QPushButton::clicked, this, [this] {
-    restart_.clear();
+    restart_session_ = 0;
     refresh();
   });
   tick_.setInterval(kTickMs);
@@ -41,15 +43,30 @@ SessionBanner::SessionBanner(AgentClient& client, QWidget* parent)
           [this](const QString& /*topic*/, const QByteArray& /*payload*/, qint64 /*time_us*/) {
             last_heard_.restart();
           });
+  connect(&client, &AgentClient::stateReceived, this, [this](const kapfix::v1::AgentState& state) {
+    const bool changed = state.resumed() != state_.resumed() || state.mode() != state_.mode() ||
+                         state.slice() != state_.slice();
+    state_ = state;
+    if (changed && restart_session_ > 0) refresh();
+  });
   refresh();
 }
 
 void SessionBanner::announceRestart(int session) {
-  restart_ = tr("AGENT RESTARTED at %1 (session %2): it starts Idle and may have lost its "
-                "settings; the panels now show only the new session.")
-                 .arg(QTime::currentTime().toString(QStringLiteral("HH:mm:ss")))
-                 .arg(session);
+  restart_session_ = session;
+  restart_time_ = QTime::currentTime().toString(QStringLiteral("HH:mm:ss"));
+  state_.set_resumed(false);  // the old agent's state says nothing about the new one
   refresh();
+}
+
+QString SessionBanner::restartText() const {
+  const QString head =
+      tr("AGENT RESTARTED at %1 (session %2): ").arg(restart_time_).arg(restart_session_);
+  const QString tail = tr("; the panels now show only the new session.");
+  if (!state_.resumed()) return head + tr("it starts Idle and may have lost its settings") + tail;
+  const QString where = state_.slice() > 0 ? tr(" on slice %1").arg(state_.slice()) : QString();
+  return head + tr("it RESUMED %1%2 from its stored state").arg(ModeName(state_.mode()), where) +
+         tail;
 }
 
 void SessionBanner::setPrompt(const QString& prompt) {
@@ -71,8 +88,8 @@ void SessionBanner::refresh() {
     text = tr("LINK DOWN: nothing from the agent for %1 s; every value shown is the last heard")
                .arg(age_s, 0, 'f', 0);
     colour = QStringLiteral("#b3261e");
-  } else if (!restart_.isEmpty()) {
-    text = restart_;
+  } else if (restart_session_ > 0) {
+    text = restartText();
     colour = QStringLiteral("#b35c00");
     dismissable = true;
   } else if (link_.replay) {

@@ -7,31 +7,93 @@
 #include <QLineEdit>
 #include <QSignalBlocker>
 #include <QSpinBox>
+#include <QVBoxLayout>
+#include <cmath>
 
 namespace kapfix::station {
+namespace {
+
+// [1] how far beyond the schema's range the editor itself goes: far enough that any number
+// an operator types stays as typed (and is refused by the row), not clamped by the editor.
+constexpr double kEditorReach = 1e9;
+
+// A spin box whose own range is far wider than the setting's (see kEditorReach), sized for
+// the setting's range rather than for its own.
+template <typename Box>
+class WideBox final : public Box {
+ public:
+  WideBox(QString widest, QWidget* parent) : Box(parent), widest_(std::move(widest)) {}
+
+  QSize sizeHint() const override { return narrowed(Box::sizeHint()); }
+  QSize minimumSizeHint() const override { return narrowed(Box::minimumSizeHint()); }
+
+ private:
+  // Qt sizes a spin box for the text of its minimum and maximum: that width is replaced by
+  // the setting's widest value.
+  QSize narrowed(QSize size) const {
+    const QFontMetrics metrics = this->fontMetrics();
+    const int own = std::max(metrics.horizontalAdvance(this->textFromValue(this->minimum())),
+                             metrics.horizontalAdvance(this->textFromValue(this->maximum())));
+    const int wanted = metrics.horizontalAdvance(widest_);
+    if (own > wanted) size.setWidth(size.width() - own + wanted);
+    return size;
+  }
+
+  QString widest_;
+};
+
+QString Number(double value) { return QString::number(value, 'g', 8); }
+
+// "0 to 48 dB", "0 (off) or 0.1 to 60 fps", "1 to 64".
+QString RangeWords(const SettingRow::Spec& spec) {
+  QString words = QObject::tr("%1 to %2").arg(Number(spec.minimum), Number(spec.maximum));
+  if (spec.zero_means_off) words = QObject::tr("0 (off) or %1").arg(words);
+  if (!spec.unit.isEmpty() && spec.unit != QStringLiteral("1"))
+    words += QLatin1Char(' ') + spec.unit;
+  return words;
+}
+
+// The widest value of the range as the editor writes it, with two characters to spare.
+QString Widest(const SettingRow::Spec& spec, int decimals) {
+  const QString low = QString::number(spec.minimum, 'f', decimals);
+  const QString high = QString::number(spec.maximum, 'f', decimals);
+  return (low.size() > high.size() ? low : high) + QStringLiteral("00");
+}
+
+}  // namespace
 
 SettingRow::SettingRow(const Spec& spec, const QString& help, QWidget* parent)
-    : QWidget(parent), key_(spec.key), kind_(spec.kind), status_(new QLabel(this)) {
+    : QWidget(parent),
+      key_(spec.key),
+      kind_(spec.kind),
+      minimum_(spec.minimum),
+      maximum_(spec.maximum),
+      zero_means_off_(spec.zero_means_off),
+      range_words_(RangeWords(spec)),
+      help_(spec.help),
+      status_(new QLabel(this)),
+      hint_(new QLabel(this)) {
   setObjectName(QStringLiteral("setting_") + key_);
   auto emit_edit = [this] { emit edited(key_, value()); };
   switch (spec.kind) {
     case Kind::kReal: {
-      auto* box = new QDoubleSpinBox(this);
-      box->setRange(spec.minimum, spec.maximum);
+      auto* box = new WideBox<QDoubleSpinBox>(Widest(spec, spec.decimals), this);
       box->setDecimals(spec.decimals);
+      box->setRange(-kEditorReach, kEditorReach);
       box->setSingleStep(spec.step);
       // One command per finished edit (Enter, focus out, arrow step), not per keystroke.
       box->setKeyboardTracking(false);
-      connect(box, &QDoubleSpinBox::valueChanged, this, emit_edit);
+      connect(box, &QDoubleSpinBox::valueChanged, this, &SettingRow::numberEdited);
       editor_ = box;
       break;
     }
     case Kind::kInteger: {
-      auto* box = new QSpinBox(this);
-      box->setRange(static_cast<int>(spec.minimum), static_cast<int>(spec.maximum));
+      auto* box = new WideBox<QSpinBox>(Widest(spec, 0), this);
+      box->setRange(-static_cast<int>(kEditorReach), static_cast<int>(kEditorReach));
       box->setSingleStep(static_cast<int>(spec.step));
       box->setKeyboardTracking(false);
-      connect(box, &QSpinBox::valueChanged, this, emit_edit);
+      connect(box, &QSpinBox::valueChanged, this,
+              [this](int value) { numberEdited(static_cast<double>(value)); });
       editor_ = box;
       break;
     }
@@ -64,10 +126,45 @@ SettingRow::SettingRow(const Spec& spec, const QString& help, QWidget* parent)
   status_->setObjectName(QStringLiteral("status_") + key_);
   status_->setWordWrap(true);
   status_->setMinimumWidth(24);
-  auto* layout = new QHBoxLayout(this);
+  hint_->setObjectName(QStringLiteral("hint_") + key_);
+  hint_->setStyleSheet(QStringLiteral("color: #5f6368;"));
+  hint_->setToolTip(help);
+  const bool number = kind_ == Kind::kReal || kind_ == Kind::kInteger;
+  hint_->setText(number ? range_words_ : QString());
+  hint_->setVisible(number);
+  auto* line = new QHBoxLayout;
+  line->setContentsMargins(0, 0, 0, 0);
+  line->addWidget(editor_);
+  line->addWidget(status_, 1);
+  auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
-  layout->addWidget(editor_);
-  layout->addWidget(status_, 1);
+  layout->setSpacing(0);
+  layout->addLayout(line);
+  layout->addWidget(hint_);
+}
+
+bool SettingRow::inRange(double value) const {
+  if (zero_means_off_ && value == 0) return true;
+  return std::isfinite(value) && value >= minimum_ && value <= maximum_;
+}
+
+void SettingRow::numberEdited(double number) {
+  if (!inRange(number)) {
+    markOutOfRange(true);
+    status_->setStyleSheet(QStringLiteral("color: #b3261e; font-weight: bold;"));
+    status_->setText(
+        tr("%1 is not possible: %2 takes %3").arg(Number(number), help_, range_words_));
+    status_->setToolTip(status_->text());
+    return;
+  }
+  markOutOfRange(false);
+  emit edited(key_, value());
+}
+
+void SettingRow::markOutOfRange(bool out) {
+  out_of_range_ = out;
+  editor_->setStyleSheet(out ? QStringLiteral("border: 2px solid #b3261e;") : QString());
+  if (!out) status_->clear();
 }
 
 QString SettingRow::value() const {
@@ -88,7 +185,14 @@ QString SettingRow::value() const {
 }
 
 void SettingRow::showAgentValue(const QString& value) {
-  if (pending_) return;
+  // Neither a change on its way nor a value the operator is still fixing is overwritten.
+  if (pending_ || out_of_range_ || refused_) return;
+  setEditorValue(value);
+}
+
+void SettingRow::restoreOperatorValue(const QString& value) {
+  refused_ = false;
+  markOutOfRange(false);
   setEditorValue(value);
 }
 
@@ -115,6 +219,8 @@ void SettingRow::setEditorValue(const QString& value) {
 
 void SettingRow::markPending() {
   pending_ = true;
+  refused_ = false;
+  editor_->setStyleSheet(QString());
   status_->setStyleSheet(QStringLiteral("color: #666;"));
   status_->setText(QStringLiteral("…"));
   status_->setToolTip(tr("Sent; waiting for the agent"));
@@ -129,6 +235,10 @@ void SettingRow::markAccepted() {
 
 void SettingRow::markRefused(const QString& reason) {
   pending_ = false;
+  // The refused value stays in the editor, marked, until the operator changes it: the
+  // agent's value does not silently take its place.
+  refused_ = true;
+  editor_->setStyleSheet(QStringLiteral("border: 2px solid #b3261e;"));
   status_->setStyleSheet(QStringLiteral("color: #b3261e;"));
   status_->setText(reason);
   status_->setToolTip(tr("Refused by the agent: %1").arg(reason));

@@ -41,6 +41,7 @@ QString GroupTitle(const FieldDescriptor& command_field) {
   if (name == "set_gains") return QStringLiteral("Controller");
   if (name == "set_search") return QStringLiteral("Search");
   if (name == "set_lens") return QStringLiteral("Lens");
+  if (name == "set_photo" || name == "set_photo_interval_s") return QStringLiteral("Photos");
   return QStringLiteral("Camera and video");
 }
 
@@ -66,11 +67,17 @@ QStringList Words(const google::protobuf::EnumDescriptor& type) {
 SettingRow::Spec SpecOf(const kapfix::ctl::SettingKey& key) {
   const FieldDescriptor& field = *key.entry.field;
   const kapfix::v1::SettingOptions& o = *key.entry.options;
-  SettingRow::Spec spec{QString::fromStdString(key.name), Label(key), Kind::kText, 0, 0, 0, 0, {}};
-  // The editor accepts the schema's range (0 too where 0 means off); the step is about a
+  SettingRow::Spec spec;
+  spec.key = QString::fromStdString(key.name);
+  spec.label = Label(key);
+  spec.kind = Kind::kText;
+  // The row checks the schema's range (0 too where 0 means off); the step is about a
   // hundredth of it.
-  spec.minimum = o.zero_means_off() ? 0 : o.min();
+  spec.minimum = o.min();
   spec.maximum = o.max();
+  spec.zero_means_off = o.zero_means_off();
+  spec.unit = QString::fromStdString(o.unit());
+  spec.help = QString::fromStdString(o.help());
   spec.step =
       o.max() > o.min() ? std::pow(10.0, std::floor(std::log10(o.max() - o.min())) - 2) : 1.0;
   switch (field.cpp_type()) {
@@ -103,6 +110,20 @@ SettingRow::Spec SpecOf(const kapfix::ctl::SettingKey& key) {
   return spec;
 }
 
+// The agent's reason in the operator's words: the field's name in the command
+// ("set_camera.gain_db = 99: must be in [0, 48] dB") becomes what the setting is ("camera
+// analogue gain = 99: ...").
+QString PlainReason(const QString& reason, const kapfix::v1::SettingEntry& setting,
+                    const QString& help) {
+  QString name = QString::fromStdString(setting.command_field->name());
+  if (setting.field != setting.command_field) {
+    name += QLatin1Char('.') + QString::fromStdString(setting.field->name());
+  }
+  QString plain = reason;
+  plain.replace(name, help);
+  return plain;
+}
+
 // A setting's value in the agent's state, as setting text: AgentState holds each settings
 // message under the command's name without "set_" (set_gains → gains).
 QString ValueIn(const AgentState& state, const kapfix::v1::SettingEntry& setting) {
@@ -132,6 +153,16 @@ QString ValueIn(const AgentState& state, const kapfix::v1::SettingEntry& setting
   }
 }
 
+// The agent reports a float, the operator typed a decimal: "0.60000002" is "0.6".
+bool SameValue(const QString& a, const QString& b) {
+  bool a_number = false;
+  bool b_number = false;
+  const double x = a.toDouble(&a_number);
+  const double y = b.toDouble(&b_number);
+  if (a_number && b_number) return static_cast<float>(x) == static_cast<float>(y);
+  return a == b;
+}
+
 std::vector<Group> Groups() {
   std::vector<Group> groups;
   for (const kapfix::ctl::SettingKey& key : kapfix::ctl::SettingKeys()) {
@@ -150,6 +181,15 @@ std::vector<Group> Groups() {
 const std::vector<Group>& TheGroups() {
   static const std::vector<Group> groups = Groups();
   return groups;
+}
+
+const Entry* EntryOf(const QString& key) {
+  for (const Group& group : TheGroups()) {
+    for (const Entry& entry : group.entries) {
+      if (entry.spec.key == key) return &entry;
+    }
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -192,15 +232,42 @@ void SettingsPanel::send(const QString& key, const QString& value) {
     return;
   }
   setting->markPending();
-  client_.sendCommand(std::move(*command),
-                      [setting = QPointer(setting)](const CommandOutcome& outcome) {
-                        if (setting.isNull()) return;
-                        if (outcome.ok) {
-                          setting->markAccepted();
-                        } else {
-                          setting->markRefused(outcome.reason);
-                        }
-                      });
+  client_.sendCommand(std::move(*command), [self = QPointer(this), setting = QPointer(setting), key,
+                                            value](const CommandOutcome& outcome) {
+    if (self.isNull() || setting.isNull()) return;
+    if (outcome.ok) {
+      self->operator_values_.insert(key, value);
+      setting->markAccepted();
+    } else {
+      const Entry* entry = EntryOf(key);
+      setting->markRefused(entry == nullptr
+                               ? outcome.reason
+                               : PlainReason(outcome.reason, entry->setting, entry->spec.help));
+    }
+  });
+}
+
+std::vector<SettingsPanel::Difference> SettingsPanel::differencesFrom(
+    const AgentState& state) const {
+  std::vector<Difference> differences;
+  for (const Group& group : TheGroups()) {
+    for (const Entry& entry : group.entries) {
+      const auto mine = operator_values_.constFind(entry.spec.key);
+      if (mine == operator_values_.constEnd()) continue;
+      const QString agent = ValueIn(state, entry.setting);
+      if (!SameValue(agent, *mine)) differences.push_back({entry.spec.key, agent, *mine});
+    }
+  }
+  return differences;
+}
+
+void SettingsPanel::reapply(const QStringList& keys) {
+  for (const QString& key : keys) {
+    const auto mine = operator_values_.constFind(key);
+    if (mine == operator_values_.constEnd() || row(key) == nullptr) continue;
+    row(key)->restoreOperatorValue(*mine);
+    send(key, *mine);
+  }
 }
 
 void SettingsPanel::showState(const AgentState& state) {

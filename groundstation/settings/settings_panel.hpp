@@ -6,7 +6,9 @@
 // change) fills the editors, so the panel shows what the agent really uses.
 
 #include <QMap>
+#include <QStringList>
 #include <QWidget>
+#include <vector>
 
 #include "groundstation/client/agent_client.hpp"
 
@@ -25,12 +27,24 @@ class SettingsPanel final : public QWidget {
   SettingRow* row(const QString& key) const { return rows_.value(key, nullptr); }
   CalibrationView& calibration() const { return *calibration_; }
 
+  // A setting where the agent's value differs from the one this station's operator last set
+  // (and the agent accepted) in this run.
+  struct Difference {
+    QString key;
+    QString agent_value;
+    QString operator_value;
+  };
+  std::vector<Difference> differencesFrom(const kapfix::v1::AgentState& state) const;
+  // Sends the operator's last value of each key again, as if typed.
+  void reapply(const QStringList& keys);
+
  private:
   void send(const QString& key, const QString& value);
   void showState(const kapfix::v1::AgentState& state);
 
   AgentClient& client_;
   QMap<QString, SettingRow*> rows_;
+  QMap<QString, QString> operator_values_;  // key → last value sent and accepted
   CalibrationView* calibration_;
 };
 

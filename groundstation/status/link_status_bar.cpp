@@ -48,8 +48,10 @@ LinkStatusBar::LinkStatusBar(AgentClient& client, QWidget* parent)
   slice_->setText(tr("Slice —"));
   connect(&client, &AgentClient::linkChanged, this, &LinkStatusBar::showLink);
   connect(&client, &AgentClient::telemetryReceived, this, &LinkStatusBar::showTelemetry);
-  connect(&client, &AgentClient::stateReceived, this,
-          [this](const kapfix::v1::AgentState& state) { showMode(state.mode()); });
+  connect(&client, &AgentClient::stateReceived, this, [this](const kapfix::v1::AgentState& state) {
+    resumed_ = state.resumed();
+    showMode(state.mode());
+  });
 }
 
 void LinkStatusBar::showLink(const LinkState& state) {
@@ -90,6 +92,10 @@ void LinkStatusBar::showTelemetry(const kapfix::v1::Telemetry& telemetry) {
   slice_->setText(telemetry.slice() > 0 ? tr("Slice %1").arg(telemetry.slice()) : tr("Slice —"));
 }
 
-void LinkStatusBar::showMode(kapfix::v1::Mode mode) { mode_->setText(ModeName(mode)); }
+void LinkStatusBar::showMode(kapfix::v1::Mode mode) {
+  // A resumed agent came back by itself in the mode it had: said so, so that the operator
+  // does not take it for a mode they chose in this session.
+  mode_->setText(resumed_ ? tr("%1 (resumed)").arg(ModeName(mode)) : ModeName(mode));
+}
 
 }  // namespace kapfix::station

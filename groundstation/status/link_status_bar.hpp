@@ -38,6 +38,7 @@ class LinkStatusBar final : public QWidget {
   QLabel* slice_;
   QLabel* source_;
   bool greyed_ = false;
+  bool resumed_ = false;  // the agent's state says it resumed from its stored state
 };
 
 }  // namespace kapfix::station

@@ -24,6 +24,7 @@
 #include "groundstation/settings/setting_row.hpp"
 #include "groundstation/settings/settings_panel.hpp"
 #include "groundstation/slices/ssp_panel.hpp"
+#include "groundstation/status/device_health_view.hpp"
 #include "groundstation/status/link_status_bar.hpp"
 #include "groundstation/video/video_panel.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
@@ -114,6 +115,19 @@ TEST_F(StationWithAgent, RunsSspPicksTheRecommendedSliceAndFixates) {
       },
       kLongWait))
       << agent_.log();
+}
+
+TEST_F(StationWithAgent, ShowsTheSimulatedCameraAndServosAsOk) {
+  ASSERT_TRUE(StreamsFlow()) << agent_.log();
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        return window_->devices().cameraText() == QStringLiteral("Camera OK") &&
+               window_->devices().servoText() == QStringLiteral("Servos OK");
+      },
+      kLongWait))
+      << window_->devices().cameraText().toStdString() << " / "
+      << window_->devices().servoText().toStdString();
+  EXPECT_FALSE(window_->devices().anyLost());
 }
 
 TEST_F(StationWithAgent, ChangesAGain) {

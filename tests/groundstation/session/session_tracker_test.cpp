@@ -48,5 +48,63 @@ TEST(SessionTracker, LostMessagesAreNotARestart) {
   EXPECT_EQ(tracker.restarts(), 0);
 }
 
+// With a boot id, the sequence starting again is not a restart (e.g. a stream reset): only a
+// different boot id is.
+TEST(SessionTracker, SameBootIdWithTheSequenceStartingAgainIsTheSameSession) {
+  FakeAgentClient client;
+  SessionTracker tracker(client);
+  client.setBootId(0x1234);
+  for (int i = 1; i <= 5; ++i) client.publish(MakeTelemetry(i, 0, 0, 1'000'000 + i * 33'000));
+  client.restartAgent(0x1234);
+  client.publish(MakeTelemetry(1, 0, 0, 2'000'000));
+  EXPECT_EQ(tracker.session(), 1);
+  EXPECT_EQ(tracker.restarts(), 0);
+  EXPECT_EQ(tracker.bootId(), 0x1234U);
+}
+
+TEST(SessionTracker, ADifferentBootIdIsARestartEvenWhileTheSequenceGoesOn) {
+  FakeAgentClient client;
+  SessionTracker tracker(client);
+  bool was_restart = false;
+  QObject::connect(&tracker, &SessionTracker::sessionStarted,
+                   [&](int /*session*/, bool restart) { was_restart = restart; });
+  client.setBootId(0x1234);
+  for (int i = 1; i <= 5; ++i) client.publish(MakeTelemetry(i, 0, 0, 1'000'000 + i * 33'000));
+  client.setBootId(0x5678);  // the fake's sequence keeps counting up
+  client.publish(MakeTelemetry(6, 0, 0, 2'000'000));
+  EXPECT_EQ(tracker.session(), 2);
+  EXPECT_EQ(tracker.restarts(), 1);
+  EXPECT_TRUE(was_restart);
+}
+
+// The agent's state carries the boot id too: a restarted agent that publishes its state
+// before its first frame is a new session at once.
+TEST(SessionTracker, AStateWithANewBootIdIsARestart) {
+  FakeAgentClient client;
+  SessionTracker tracker(client);
+  client.setBootId(7);
+  client.publish(MakeTelemetry(1, 0, 0, 1'000'000));
+  client.restartAgent(8);
+  client.publish(kapfix::v1::AgentState());
+  EXPECT_EQ(tracker.session(), 2);
+  EXPECT_EQ(tracker.restarts(), 1);
+}
+
+// The state inside a reply to request_state may come without a stamped header: it is not
+// another agent.
+TEST(SessionTracker, AStateWithoutBootIdOrAgentIdIsNotARestart) {
+  FakeAgentClient client;
+  SessionTracker tracker(client);
+  client.setBootId(7);
+  client.publish(MakeTelemetry(1, 0, 0, 1'000'000));
+  kapfix::v1::Command request;
+  request.mutable_request_state();
+  client.sendCommand(request);  // the fake replies with an unstamped AgentState
+  testing::ProcessEvents();
+  client.publish(MakeTelemetry(2, 0, 0, 1'033'000));
+  EXPECT_EQ(tracker.session(), 1);
+  EXPECT_EQ(tracker.restarts(), 0);
+}
+
 }  // namespace
 }  // namespace kapfix::station

@@ -38,13 +38,69 @@ TEST(SettingsPanel, AnEditorHasTheSchemasRangeUnitAndHelp) {
   ASSERT_NE(rate, nullptr);
   auto* box = qobject_cast<QDoubleSpinBox*>(rate->editor());
   ASSERT_NE(box, nullptr);
-  EXPECT_DOUBLE_EQ(box->minimum(), 1);
-  EXPECT_DOUBLE_EQ(box->maximum(), 1000);
+  EXPECT_EQ(rate->hintLabel()->text(), QStringLiteral("1 to 1000 deg/s"));
   EXPECT_TRUE(box->toolTip().contains(QStringLiteral("[1, 1000] deg/s")))
       << box->toolTip().toStdString();
-  auto* i = qobject_cast<QDoubleSpinBox*>(panel.row(QStringLiteral("i"))->editor());
-  ASSERT_NE(i, nullptr);
-  EXPECT_DOUBLE_EQ(i->maximum(), 10);
+  EXPECT_EQ(panel.row(QStringLiteral("i"))->hintLabel()->text(), QStringLiteral("0 to 10 1/s"));
+  EXPECT_EQ(panel.row(QStringLiteral("video_fps"))->hintLabel()->text(),
+            QStringLiteral("0 (off) or 0.1 to 60 fps"));
+}
+
+// The agent's reason names the field in the command; the operator reads what it is.
+TEST(SettingsPanel, TheAgentsRefusalReadsInPlainWords) {
+  FakeAgentClient client;
+  client.refuse(kapfix::v1::Command::kSetCamera, "set_camera.gain_db = 47: must be in [0, 46] dB");
+  SettingsPanel panel(client);
+  SettingRow* gain = panel.row(QStringLiteral("gain"));
+  auto* box = qobject_cast<QDoubleSpinBox*>(gain->editor());
+  ASSERT_NE(box, nullptr);
+  box->setValue(47);
+  ProcessEvents();
+  const QString shown = gain->statusLabel()->text();
+  EXPECT_EQ(shown, QStringLiteral("camera analogue gain = 47: must be in [0, 46] dB"));
+  EXPECT_FALSE(shown.contains(QStringLiteral("set_camera")));
+  // Fixed, the message goes and the ✓ shows.
+  client.accept(kapfix::v1::Command::kSetCamera);
+  box->setValue(12);
+  ProcessEvents();
+  EXPECT_EQ(gain->statusLabel()->text(), QStringLiteral("✓"));
+}
+
+TEST(SettingsPanel, AValueOutOfTheSchemasRangeIsNotSent) {
+  FakeAgentClient client;
+  SettingsPanel panel(client);
+  auto* gain = qobject_cast<QDoubleSpinBox*>(panel.row(QStringLiteral("gain"))->editor());
+  ASSERT_NE(gain, nullptr);
+  gain->setValue(9999);
+  EXPECT_EQ(client.lastCommand(kapfix::v1::Command::kSetCamera), nullptr);
+  EXPECT_TRUE(panel.row(QStringLiteral("gain"))->refusedLocally());
+}
+
+// Issue 13: the shutter settings are edited like every other, through the schema.
+TEST(SettingsPanel, TheShutterSettingsHaveTheirRowsAndChoosingBestPhaseSendsSetPhoto) {
+  FakeAgentClient client;
+  SettingsPanel panel(client);
+  for (const char* key :
+       {"shutter", "shutter_window", "shutter_window_cap", "photo_exposure", "photo_camera"}) {
+    EXPECT_NE(panel.row(QLatin1String(key)), nullptr) << key;
+  }
+  auto* shutter = qobject_cast<QComboBox*>(panel.row(QStringLiteral("shutter"))->editor());
+  ASSERT_NE(shutter, nullptr);
+  const int best = shutter->findText(QStringLiteral("best-phase"));
+  ASSERT_GE(best, 0);
+  shutter->setCurrentIndex(best);
+  emit shutter->activated(best);
+  const auto* command = client.lastCommand(kapfix::v1::Command::kSetPhoto);
+  ASSERT_NE(command, nullptr);
+  EXPECT_EQ(command->set_photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+
+  kapfix::v1::AgentState state;
+  state.mutable_photo()->set_shutter(kapfix::v1::SHUTTER_INTERVAL);
+  state.mutable_photo()->set_exposure_ms(8);
+  ProcessEvents();
+  client.publish(state);
+  EXPECT_EQ(panel.row(QStringLiteral("shutter"))->value(), QStringLiteral("interval"));
+  EXPECT_EQ(panel.row(QStringLiteral("photo_exposure"))->value(), QStringLiteral("8"));
 }
 
 TEST(SettingsPanel, RefusedSettingShowsTheAgentsReasonNextToItsControl) {
