@@ -4,12 +4,14 @@
 # shutter, photos every 2 s for 60 s, on several seeds. Prints one row per flight and, per
 # seed, best-phase's figures against interval's in the same world and seed.
 # Usage: bench/photo-shutter-pair.sh [BUILD_DIR] [SEED ...]   (default build/default, 1…5)
+#        PHOTO_EXPOSURE_MS=30 bench/photo-shutter-pair.sh …      (default 10 ms)
 # Needs jq. About 20–40 s per flight.
 set -euo pipefail
 
 build_dir="${1:-build/default}"
 shift || true
 seeds=("$@")
+exposure_ms="${PHOTO_EXPOSURE_MS:-10}"
 if [ ${#seeds[@]} -eq 0 ]; then seeds=(1 2 3 4 5); fi
 agent="$build_dir/agent/kapfix-agent"
 [ -x "$agent" ] || { echo "photo-shutter-pair: no $agent (build kapfix-agent)" >&2; exit 2; }
@@ -22,7 +24,7 @@ fly() {  # seed shutter → summary.json path
   local seed="$1" shutter="$2" dir="$work/$1-$2"
   mkdir -p "$dir"
   nice -n 5 "$agent" --sim --max-speed --blur --seed "$seed" --photo-interval 2 \
-    --shutter "$shutter" --duration 60 --report "$dir/report" --photos "$dir/photos" \
+    --photo-exposure "$exposure_ms" --shutter "$shutter" --duration 60 --report "$dir/report" --photos "$dir/photos" \
     --state-dir "$dir/state" --command-address "ipc://$dir/command" \
     --stream-address "ipc://$dir/stream" > /dev/null 2> "$dir.log" ||
     { echo "photo-shutter-pair: seed $seed $shutter failed, see:" >&2; tail -3 "$dir.log" >&2; exit 1; }

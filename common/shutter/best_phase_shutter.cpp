@@ -121,13 +121,12 @@ ShutterShot BestPhaseShutter::Fire(const ShutterFrame& frame, std::string reason
 
 std::optional<ShutterShot> BestPhaseShutter::OnFrame(const ShutterFrame& frame) {
   forecaster_.Observe(frame);
-  // previous_ is the frame before this one until the end of this call.
-  struct Advance {
-    std::optional<ShutterFrame>& previous;
-    const ShutterFrame& frame;
-    ~Advance() { previous = frame; }
-  } advance{previous_, frame};
+  std::optional<ShutterShot> shot = Decide(frame);
+  previous_ = frame;
+  return shot;
+}
 
+std::optional<ShutterShot> BestPhaseShutter::Decide(const ShutterFrame& frame) {
   if (requested_ && !open_) {
     requested_ = false;
     open_ = true;

@@ -84,6 +84,8 @@ class BestPhaseShutter {
   double Cost(double speed_px_per_frame, double offset_px) const;
 
  private:
+  // This frame's choice; previous_ is still the frame before.
+  std::optional<ShutterShot> Decide(const ShutterFrame& frame);
   ShutterShot Fire(const ShutterFrame& frame, std::string reason);
 
   ViewForecaster& forecaster_;
