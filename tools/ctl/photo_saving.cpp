@@ -25,7 +25,7 @@ std::filesystem::path SavePhotoWithSidecar(const AssembledPhoto& photo,
                                            const std::filesystem::path& folder) {
   // Before the photo: metadata that cannot be written leaves nothing behind.
   const std::string sidecar = kapfix::v1::PhotoSidecarJson(photo.metadata);
-  const std::filesystem::path path = PhotoAssembler::Save(photo, folder);
+  std::filesystem::path path = PhotoAssembler::Save(photo, folder);
   std::filesystem::path sidecar_path = path;
   sidecar_path += ".json";
   try {
