@@ -48,6 +48,11 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   o.px_per_deg = config.simulation.world.calibration_error / config.active_lens().DegPerPxPan();
   const bool default_gusts = config.simulation.world.gusts == WorldOptions::Gusts::kPeriodic;
   config.simulation.world.ApplyTo(&o);
+  // --blur smears each frame over the photo's exposure (issue 13), at most one frame period.
+  if (config.simulation.world.blur) {
+    o.camera.motion_blur_exposure =
+        std::min(1.0, config.photos.exposure_ms / 1000.0 * config.camera.fps);
+  }
   if (default_gusts) o.kite.gusts = config.simulation.gusts;
   o.pan.min_deg = config.servo.pan.limits.min_deg;
   o.pan.max_deg = config.servo.pan.limits.max_deg;
@@ -263,6 +268,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     return state_ ? state_->settings()->lens : config_.lens;
   });
   photos_->SetInterval(config_.photos.interval_s);
+  photos_->SetShutter(config_.photos);
   // The still camera is opened at its first photo, so it costs nothing until selected.
   photos_->SetStillCamera(std::make_shared<StillCameraTrigger>(
       std::make_unique<Gphoto2StillCamera>(), options_.still_camera_delete));

@@ -103,6 +103,7 @@ class Agent {
   const std::string& stream_endpoint() const { return stream_endpoint_; }
   StreamPublisher::Counters link_counters() const { return publisher_->counters(); }
   std::uint64_t video_frames_sent() const { return video_->sent(); }
+  PhotoTaker& photos() { return *photos_; }
 
  private:
   AgentConfig config_;

@@ -19,6 +19,7 @@
 #include "agent/agent.hpp"
 #include "agent/config/agent_config.hpp"
 #include "agent/config/device_spec.hpp"
+#include "agent/photos/photo_quality.hpp"
 #include "agent/pipeline/flight_report.hpp"
 #include "agent/preflight/preflight.hpp"
 
@@ -62,6 +63,9 @@ int Main(int argc, char** argv) {
   std::optional<double> period_drift, roll_deg, frame_drops, calibration_error;
   std::optional<int> latency_jitter;
   bool sway = false, blur = false, exposure_steps = false;
+  // Photos (issue 13).
+  std::optional<double> photo_interval_s, shutter_window_s, photo_exposure_ms;
+  std::string shutter;
   app.add_option("--config", config_path,
                  "configuration file (resources/README.md); default: built-in defaults, which "
                  "fly in simulation");
@@ -127,6 +131,16 @@ int Main(int argc, char** argv) {
   app.add_flag("--still-camera-delete", still_camera_delete,
                "delete each still-camera photo on the camera once stored on the agent (default: "
                "the camera's card keeps it too)");
+  app.add_option("--photo-interval", photo_interval_s,
+                 "seconds between automatic photos, 0 = off (overrides photos.interval_s)");
+  app.add_option("--shutter", shutter, "when a photo is taken (overrides photos.shutter)")
+      ->check(CLI::IsMember({"interval", "best-phase"}));
+  app.add_option("--shutter-window", shutter_window_s,
+                 "best-phase wait for the quietest moment, 0 = one swing period [s] (overrides "
+                 "photos.window_s)");
+  app.add_option("--photo-exposure", photo_exposure_ms,
+                 "photo exposure the shutter plans for and --blur smears over [ms] (overrides "
+                 "photos.exposure_ms)");
   CLI11_PARSE(app, argc, argv);
 
   kapfix::WorldOptions world;
@@ -176,6 +190,10 @@ int Main(int argc, char** argv) {
   if (!stream_address.empty()) config.link.stream_address = stream_address;
   if (!photos_dir.empty()) config.photos.dir = photos_dir;
   if (!state_dir.empty()) config.state_dir = state_dir;
+  if (photo_interval_s) config.photos.interval_s = *photo_interval_s;
+  if (!shutter.empty()) config.photos.shutter = *ParseShutterMode(shutter);
+  if (shutter_window_s) config.photos.window_s = *shutter_window_s;
+  if (photo_exposure_ms) config.photos.exposure_ms = *photo_exposure_ms;
   {
     std::string error;
     if (!camera_spec.empty() && !ApplyCameraSpec(camera_spec, &config.camera, &error)) {
@@ -254,6 +272,11 @@ int Main(int argc, char** argv) {
   }
   const auto records = agent->telemetry().records();
   const FlightFigures figures = ComputeFlightFigures(records, stats);
+  agent->photos().Flush();  // the photos fired before the end, written
+  const PhotoFigures photo_figures = ComputePhotoFigures(agent->photos().Saved());
+  const auto number = [](double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+  };
   nlohmann::json summary = {
       {"rms_error_px", std::isfinite(figures.rms_error_px) ? nlohmann::json(figures.rms_error_px)
                                                            : nlohmann::json(nullptr)},
@@ -282,6 +305,14 @@ int Main(int argc, char** argv) {
       {"servo_errors", stats.servo_errors},
       {"servo_outages", stats.servo_outages},
       {"camera_reconnects", stats.camera_reconnects},
+      {"shutter", std::string(ToString(config.photos.shutter))},
+      {"photos", photo_figures.photos},
+      {"photo_view_speed_px_mean", number(photo_figures.view_speed_px_mean)},
+      {"photo_view_blur_px_mean", number(photo_figures.view_blur_px_mean)},
+      {"photo_offset_px_mean", number(photo_figures.offset_px_mean)},
+      {"photo_sharpness_mean", number(photo_figures.sharpness_mean)},
+      {"photo_wait_s_mean", number(photo_figures.wait_s_mean)},
+      {"photo_lock_lost_share", number(photo_figures.lock_lost_share)},
   };
   std::cout << summary.dump(2) << std::endl;
   if (!report_dir.empty()) {

@@ -40,6 +40,8 @@ packages=(
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev googletest libbenchmark-dev
+  # bench/photo-shutter-pair.sh reads the flights' summary.json
+  jq
 )
 
 if [ "${1:-}" = "--runtime" ]; then packages=("${runtime_packages[@]}"); fi

@@ -66,6 +66,9 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
     case kapfix::v1::Command::kSetPhotoIntervalS:
       targets_.photos.SetInterval(settings->photos.interval_s);
       break;
+    case kapfix::v1::Command::kSetPhoto:
+      targets_.photos.SetShutter(settings->photos);
+      break;
     default:
       targets_.modes.RequestSettings(*settings);
       break;
@@ -83,6 +86,7 @@ kapfix::v1::Reply CommandExecutor::Execute(const kapfix::v1::Command& command) {
     case kapfix::v1::Command::kSetLens:
     case kapfix::v1::Command::kSetVideo:
     case kapfix::v1::Command::kSetPhotoIntervalS:
+    case kapfix::v1::Command::kSetPhoto:
       return ApplySettings(command);
     case kapfix::v1::Command::kSelectSlice:
       targets_.modes.RequestSlice(static_cast<int>(command.select_slice()));

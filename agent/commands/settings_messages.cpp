@@ -141,6 +141,26 @@ void ApplyLens(const kapfix::v1::LensProfile& l, AgentConfig* c) {
   c->lens = name;
 }
 
+kapfix::v1::Shutter ToProto(ShutterMode mode) {
+  return mode == ShutterMode::kBestPhase ? kapfix::v1::SHUTTER_BEST_PHASE
+                                         : kapfix::v1::SHUTTER_INTERVAL;
+}
+
+kapfix::v1::PhotoCamera ToProto(PhotoCameraKind camera) {
+  return camera == PhotoCameraKind::kGphoto2 ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
+                                             : kapfix::v1::PHOTO_CAMERA_AGENT;
+}
+
+void ApplyPhoto(const kapfix::v1::PhotoSettings& p, PhotoConfig* c) {
+  if (p.shutter() == kapfix::v1::SHUTTER_INTERVAL) c->shutter = ShutterMode::kInterval;
+  if (p.shutter() == kapfix::v1::SHUTTER_BEST_PHASE) c->shutter = ShutterMode::kBestPhase;
+  if (p.has_window_s()) c->window_s = p.window_s();
+  if (p.has_window_cap_s()) c->window_cap_s = p.window_cap_s();
+  if (p.has_exposure_ms()) c->exposure_ms = p.exposure_ms();
+  if (p.camera() == kapfix::v1::PHOTO_CAMERA_AGENT) c->camera = PhotoCameraKind::kAgent;
+  if (p.camera() == kapfix::v1::PHOTO_CAMERA_GPHOTO2) c->camera = PhotoCameraKind::kGphoto2;
+}
+
 }  // namespace
 
 void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state) {
@@ -177,6 +197,12 @@ void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state) {
   l->set_pixel_pitch_um(static_cast<float>(lens.pixel_pitch_um));
 
   state->set_photo_interval_s(static_cast<float>(config.photos.interval_s));
+  kapfix::v1::PhotoSettings* photo = state->mutable_photo();
+  photo->set_shutter(ToProto(config.photos.shutter));
+  photo->set_window_s(static_cast<float>(config.photos.window_s));
+  photo->set_window_cap_s(static_cast<float>(config.photos.window_cap_s));
+  photo->set_exposure_ms(static_cast<float>(config.photos.exposure_ms));
+  photo->set_camera(ToProto(config.photos.camera));
   kapfix::v1::VideoSettings* v = state->mutable_video();
   v->set_fps(static_cast<float>(config.video.fps));
   v->set_jpeg_quality(static_cast<std::uint32_t>(config.video.quality));
@@ -214,6 +240,9 @@ bool ApplySettingsCommand(const kapfix::v1::Command& command, AgentConfig* confi
     }
     case kapfix::v1::Command::kSetPhotoIntervalS:
       updated.photos.interval_s = command.set_photo_interval_s();
+      break;
+    case kapfix::v1::Command::kSetPhoto:
+      ApplyPhoto(command.set_photo(), &updated.photos);
       break;
     default:
       if (error) *error = "not a settings command";

@@ -172,6 +172,13 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
   r.ReadObject("photos", [c](ConfigReader& s) {
     s.Read("dir", &c->photos.dir);
     s.Read("interval_s", &c->photos.interval_s);
+    s.ReadParsed<ShutterMode>("shutter", &c->photos.shutter,
+                              Enum<ShutterMode>(ParseShutterMode, "interval or best-phase"));
+    s.Read("window_s", &c->photos.window_s);
+    s.Read("window_cap_s", &c->photos.window_cap_s);
+    s.Read("exposure_ms", &c->photos.exposure_ms);
+    s.ReadParsed<PhotoCameraKind>("camera", &c->photos.camera,
+                                  Enum<PhotoCameraKind>(ParsePhotoCameraKind, "agent or gphoto2"));
     return s.ok();
   });
   r.ReadObject("video", [c](ConfigReader& s) {

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "common/io/atomic_file.hpp"
+#include "kapfix/v1/photo_sidecar.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -93,13 +94,7 @@ kapfix::v1::PhotoMetadata PhotoStore::SaveFile(const std::string& bytes,
     throw std::runtime_error("photo: invalid file name '" + name + "'");
   }
   metadata.set_file_name(name);
-  std::string sidecar;
-  google::protobuf::util::JsonPrintOptions options;
-  options.add_whitespace = true;
-  options.preserve_proto_field_names = true;
-  if (!google::protobuf::util::MessageToJsonString(metadata, &sidecar, options).ok()) {
-    throw std::runtime_error("photo " + name + ": metadata not representable as JSON");
-  }
+  const std::string sidecar = kapfix::v1::PhotoSidecarJson(metadata);
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   const std::filesystem::path path = dir_ / name;

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "agent/photos/photo_quality.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -14,6 +16,9 @@ constexpr std::size_t kMaxQueuedPhotos = 8;
 // About 3 bytes per pixel is more than a JPEG at quality 95 ever needs; the store keeps room
 // for twice this free.
 constexpr std::uintmax_t kRoughPhotoBytes = std::uintmax_t{3} * 1024 * 1024;
+// Saved photos whose metadata is kept for the flight's figures (a few hundred bytes each);
+// beyond, the figures are those of the first ones.
+constexpr std::size_t kMaxRememberedPhotos = 100000;
 
 std::int64_t WallClockUs() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -38,10 +43,11 @@ PhotoTaker::~PhotoTaker() {
 bool PhotoTaker::Request(const std::string& note, std::string* error, std::string* file_name) {
   if (!store_.CheckWritable(kRoughPhotoBytes, error)) return false;
   std::lock_guard lock(mutex_);
-  if (jobs_.size() + requested_.size() >= kMaxQueuedPhotos) {
+  if (jobs_.size() + requested_.size() + waiting_.size() >= kMaxQueuedPhotos) {
     if (error) {
-      *error = "photo refused: " + std::to_string(jobs_.size() + requested_.size()) +
-               " photos still being taken or written";
+      *error =
+          "photo refused: " + std::to_string(jobs_.size() + requested_.size() + waiting_.size()) +
+          " photos still being taken or written";
     }
     return false;
   }
@@ -55,6 +61,22 @@ void PhotoTaker::SetInterval(double seconds) {
   interval_s_ = seconds;
 }
 
+void PhotoTaker::SetShutter(const PhotoConfig& photos) {
+  shutter_.Set(photos);
+  cameras_.Select(photos.camera == PhotoCameraKind::kGphoto2 ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
+                                                             : kapfix::v1::PHOTO_CAMERA_AGENT);
+}
+
+void PhotoTaker::Flush() {
+  std::unique_lock lock(mutex_);
+  drained_.wait(lock, [this] { return jobs_.empty() && !writing_; });
+}
+
+std::vector<kapfix::v1::PhotoMetadata> PhotoTaker::Saved() const {
+  std::lock_guard lock(mutex_);
+  return saved_metadata_;
+}
+
 std::vector<std::string> PhotoTaker::Resend(std::int64_t since_us) {
   std::vector<kapfix::v1::PhotoMetadata> photos = store_.ListSince(since_us);
   std::vector<std::string> names;
@@ -63,13 +85,13 @@ std::vector<std::string> PhotoTaker::Resend(std::int64_t since_us) {
   if (photos.empty()) return names;
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back(Job{cv::Mat(), {}, std::move(photos)});
+    jobs_.push_back(Job{cv::Mat(), {}, std::move(photos), {}});
   }
   wake_.notify_one();
   return names;
 }
 
-void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcome*/,
+void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
                         const TelemetryRecord& record) {
   std::vector<Requested> photos;
   {
@@ -82,6 +104,16 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcom
         last_auto_us_ = frame.capture_time_us;
       }
     }
+    // The requests wait for the shutter, which sees every frame.
+    if (!photos.empty()) shutter_.Request();
+    for (Requested& photo : photos) waiting_.push_back(std::move(photo));
+    photos.clear();
+  }
+  const std::optional<ShutterShot> shot = shutter_.OnStep(frame, record);
+  if (!shot) return;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(photos, waiting_);
     if (photos.empty()) return;
     // Requests were bounded with the queue when made; only interval photos can overflow it.
     if (jobs_.size() + photos.size() > kMaxQueuedPhotos && photos.front().file_name.empty()) {
@@ -104,12 +136,15 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& /*outcom
   metadata.set_slice(static_cast<std::uint32_t>(record.slice));
   metadata.set_lens_profile(lens_ ? lens_() : std::string());
   metadata.set_confidence(static_cast<float>(record.confidence));
+  FillShotQuality(*shot, shutter_.mode(), shutter_.exposure_ms(), &metadata);
+  const cv::Rect patch =
+      PatchInFrame(outcome.patch, {record.displacement_x_px, record.displacement_y_px});
   // cv::Mat copies share one pixel buffer: one clone for all photos of this frame.
   const cv::Mat image = frame.image.clone();
   {
     std::lock_guard lock(mutex_);
     for (Requested& photo : photos) {
-      Job job{image, metadata, {}};
+      Job job{image, metadata, {}, patch};
       job.metadata.set_note(std::move(photo.note));
       job.metadata.set_file_name(std::move(photo.file_name));
       jobs_.push_back(std::move(job));
@@ -149,10 +184,13 @@ void PhotoTaker::Offer(const kapfix::v1::PhotoMetadata& metadata, const std::str
 void PhotoTaker::WriterThread() {
   std::unique_lock lock(mutex_);
   while (true) {
+    writing_ = false;
+    drained_.notify_all();
     wake_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
     if (jobs_.empty()) return;  // stopping, nothing left to write
     Job job = std::move(jobs_.front());
     jobs_.pop_front();
+    writing_ = true;
     lock.unlock();
     if (job.image.empty()) {
       for (const auto& metadata : job.resend) {
@@ -175,11 +213,16 @@ void PhotoTaker::WriterThread() {
       }
       reserve_refusal_logged_ = false;
       try {
+        FillSharpness(job.image, job.patch, &job.metadata);
         const PhotoRequest request{job.metadata.file_name(), job.metadata.note(), job.image};
         const TakenPhoto taken = cameras_.Take(request, &job.metadata);
         const kapfix::v1::PhotoMetadata saved = store_.SaveFile(taken.bytes, job.metadata);
         cameras_.Stored(taken);
         ++saved_;
+        {
+          std::lock_guard saved_lock(mutex_);
+          if (saved_metadata_.size() < kMaxRememberedPhotos) saved_metadata_.push_back(saved);
+        }
         spdlog::info("photo {} saved ({} KiB)", saved.file_name(), taken.bytes.size() / 1024);
         Offer(saved, taken.bytes);
       } catch (const std::exception& e) {

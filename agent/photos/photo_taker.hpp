@@ -11,7 +11,9 @@
 #include <thread>
 #include <vector>
 
+#include "agent/config/photo_config.hpp"
 #include "agent/photos/photo_cameras.hpp"
+#include "agent/photos/photo_shutter.hpp"
 #include "agent/photos/photo_store.hpp"
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/server/stream_sink.hpp"
@@ -23,7 +25,9 @@ namespace kapfix::agent {
 // then offers it to the station as Photo chunks. Photos taken while the link is down stay on
 // disk and are sent again on request (Resend). Each request is one photo, also several in one
 // frame, stored with its note; interval photos keep the same free-space reserve as commanded
-// ones (checked by the writer before each photo).
+// ones (checked by the writer before each photo). When the photo is taken is the
+// PhotoShutter's choice (issue 13: at once, or at the quietest moment of a window); the
+// sidecar carries the shot's quality, and the writer adds the stored image's sharpness.
 class PhotoTaker : public StepObserver {
  public:
   // [bytes] each Photo message carries at most this much of the file, well under the
@@ -49,6 +53,14 @@ class PhotoTaker : public StepObserver {
   void SetStillCamera(std::shared_ptr<PhotoTrigger> still) {
     cameras_.SetStillCamera(std::move(still));
   }
+  // Any thread: shutter, window, cap, exposure and camera from the next frame on (`photos`
+  // IsValid).
+  void SetShutter(const PhotoConfig& photos);
+  // Any thread: waits until every photo the shutter fired is written (or failed).
+  void Flush();
+  // Any thread: the metadata of the photos saved since the start (the first 100,000),
+  // oldest first.
+  std::vector<kapfix::v1::PhotoMetadata> Saved() const;
   // Publishes again every stored photo taken at or after `since_us`; returns their file
   // names, oldest first. They are listed now and sent by the writer thread, so the names are
   // what a station will get.
@@ -66,6 +78,7 @@ class PhotoTaker : public StepObserver {
     cv::Mat image;  // empty: a resend
     kapfix::v1::PhotoMetadata metadata;
     std::vector<kapfix::v1::PhotoMetadata> resend;  // the stored photos to send again
+    cv::Rect patch;  // [px] where the reference patch is seen in `image`; empty = none
   };
   void WriterThread();
   void Offer(const kapfix::v1::PhotoMetadata& metadata, const std::string& bytes);
@@ -74,15 +87,20 @@ class PhotoTaker : public StepObserver {
   StreamSink& sink_;
   std::function<std::string()> lens_;
   PhotoCameras cameras_;  // used by the writer thread; thread-safe
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable wake_;
+  std::condition_variable drained_;  // jobs_ empty and the writer idle
+  bool writing_ = false;             // the writer holds a job
   std::deque<Job> jobs_;
   bool stop_ = false;
   struct Requested {
     std::string note;
     std::string file_name;
   };
-  std::vector<Requested> requested_;     // for the next frame; with jobs_, at most kMaxQueuedPhotos
+  std::vector<Requested> requested_;  // for the next frame; with jobs_, at most kMaxQueuedPhotos
+  std::vector<Requested> waiting_;    // for the shutter's window (counted with requested_)
+  std::vector<kapfix::v1::PhotoMetadata> saved_metadata_;
+  PhotoShutter shutter_;                 // Set() from any thread, else the control thread's
   bool reserve_refusal_logged_ = false;  // writer thread: one line per disk-full episode
   double interval_s_ = 0;
   std::optional<std::int64_t> last_auto_us_;  // control thread only

@@ -88,6 +88,25 @@ class Checker {
   std::string reason_;
 };
 
+// The window may not outlast its cap (issue 13): across two fields, each of which may come
+// from the command or keep the agent's current value.
+void CheckPhoto(const kapfix::v1::PhotoSettings& photo, const kapfix::v1::AgentState& current,
+                Checker& check) {
+  check.Settings(photo, "set_photo");
+  if (check.failed() || (!photo.has_window_s() && !photo.has_window_cap_s())) return;
+  const float window = photo.has_window_s() ? photo.window_s() : current.photo().window_s();
+  // An agent that has not said its cap yet: the config's default.
+  constexpr float kDefaultCapS = 10;
+  const float cap = photo.has_window_cap_s()             ? photo.window_cap_s()
+                    : current.photo().has_window_cap_s() ? current.photo().window_cap_s()
+                                                         : kDefaultCapS;
+  if (window > cap) {
+    check.Fail(kapfix::v1::ERROR_CODE_OUT_OF_RANGE,
+               "set_photo.window_s = " + Num(window) + " s is longer than window_cap_s = " +
+                   Num(cap) + " s: shorten the window or raise the cap");
+  }
+}
+
 std::uint32_t FrameSide(std::uint32_t side, const CommandLimits& limits) {
   return side == 0 ? limits.fallback_frame_side_px : side;
 }
@@ -232,7 +251,7 @@ Reply CommandValidator::Validate(const Command& command,
       check.Settings(command.set_video(), "set_video");
       break;
     case Command::kSetPhoto:
-      check.Settings(command.set_photo(), "set_photo");
+      CheckPhoto(command.set_photo(), current, check);
       break;
     case Command::COMMAND_NOT_SET:
       check.Fail(kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND, UnknownCommandReason(command));

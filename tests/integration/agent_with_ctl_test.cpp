@@ -90,6 +90,27 @@ TEST(AgentWithCtlTest, PhotoAndItsSidecarLandOnDiskAndAtTheStation) {
             std::filesystem::file_size(photos.front()));
 }
 
+// Issue 13 end to end: the key from the schema, the shutter in the agent, the quality in the
+// sidecar kapfix-ctl writes beside the photo in a folder it makes.
+TEST(AgentWithCtlTest, BestPhasePhotoSavedWithItsSidecarInANewFolder) {
+  AgentProcess agent;
+  const auto set = agent.Ctl("set shutter best-phase");
+  ASSERT_EQ(set.exit_code, 0) << set.err << agent.log();
+  const std::filesystem::path station = agent.folder() / "station" / "new";
+  const auto photo = agent.Ctl("photo --note ridge --save " + station.string());
+  ASSERT_EQ(photo.exit_code, 0) << photo.err << agent.log();
+  const auto received = FilesEndingWith(station, ".jpg");
+  ASSERT_EQ(received.size(), 1U) << photo.out;
+  std::ifstream sidecar(received.front().string() + ".json");
+  ASSERT_TRUE(sidecar) << "no sidecar beside " << received.front();
+  const auto metadata = nlohmann::json::parse(sidecar);
+  EXPECT_EQ(metadata["shutter"], "SHUTTER_BEST_PHASE") << metadata.dump();
+  EXPECT_EQ(metadata["note"], "ridge");
+  EXPECT_EQ(metadata["camera"], "PHOTO_CAMERA_AGENT");
+  EXPECT_FALSE(metadata.value("shutter_reason", "").empty()) << metadata.dump();
+  EXPECT_GT(metadata.value("sharpness_frame", 0.0), 0.0) << metadata.dump();
+}
+
 TEST(AgentWithCtlTest, MalformedCommandGetsAnErrorReplyAndTheAgentKeepsRunning) {
   AgentProcess agent;
   RawStation station("tcp://127.0.0.1:" + std::to_string(agent.command_port()));

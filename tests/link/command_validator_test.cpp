@@ -260,6 +260,41 @@ TEST(CommandValidatorPhotoTest, RefusesAnOverlongNote) {
   ExpectOutOfRange(command, "take_photo.note is 2000 bytes", "1024");
 }
 
+// Issue 13: set_photo's window may not outlast its cap, given in the command or the agent's.
+TEST(CommandValidatorPhotoTest, RefusesAWindowLongerThanTheCapInTheCommand) {
+  Command command;
+  command.mutable_set_photo()->set_window_s(5.0F);
+  command.mutable_set_photo()->set_window_cap_s(3.0F);
+  ExpectOutOfRange(command, "set_photo.window_s = 5", "longer than window_cap_s = 3");
+}
+
+TEST(CommandValidatorPhotoTest, RefusesAWindowLongerThanTheAgentsCap) {
+  Command command;
+  command.mutable_set_photo()->set_window_s(5.0F);
+  kapfix::v1::AgentState state = State640x480();
+  state.mutable_photo()->set_window_cap_s(4.0F);
+  const auto reply = CommandValidator().Validate(command, state);
+  EXPECT_FALSE(reply.ok());
+  EXPECT_THAT(reply.reason(), HasSubstr("longer than window_cap_s = 4"));
+  state.mutable_photo()->set_window_cap_s(6.0F);
+  EXPECT_TRUE(CommandValidator().Validate(command, state).ok());
+}
+
+TEST(CommandValidatorPhotoTest, RefusesAnExposureThatIsNotPositive) {
+  Command command;
+  command.mutable_set_photo()->set_exposure_ms(0.0F);
+  ExpectOutOfRange(command, "set_photo.exposure_ms = 0");
+  command.mutable_set_photo()->set_exposure_ms(-1.0F);
+  ExpectOutOfRange(command, "set_photo.exposure_ms = -1");
+}
+
+TEST(CommandValidatorPhotoTest, AcceptsBestPhaseWithAWindowWithinTheCap) {
+  Command command;
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  command.mutable_set_photo()->set_window_s(2.0F);
+  EXPECT_TRUE(Check(command).ok()) << Check(command).reason();
+}
+
 TEST(CommandValidatorVideoTest, AcceptsFpsZeroAsVideoOff) {
   Command command;
   command.mutable_set_video()->set_fps(0);

@@ -1,6 +1,7 @@
 // kapfix-ctl as a script runs it (popen), against the fake agent in this process: exit codes,
 // printed lines, files.
 #include <gmock/gmock.h>
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 #include <thread>
 
 #include "kapfix/v1/envelope_codec.hpp"
+#include "kapfix/v1/photo_sidecar.hpp"
 #include "kapfix/v1/telemetry.pb.h"
 #include "tests/link/link_test_support.hpp"
 #include "tools/ctl/session_reader.hpp"
@@ -204,8 +206,35 @@ TEST_F(CtlTest, PhotoSaveWritesTheAgentsPhotoToTheFolder) {
   EXPECT_EQ(ReadFile(path), FakeAgentControl::PhotoBytes());
 }
 
-TEST_F(CtlTest, PhotoSaveIntoAMissingFolderExitsTwo) {
-  EXPECT_EQ(Run("photo --save " + (folder_ / "missing").string()).exit_code, 2);
+// Issue 13: the sidecar is written beside the photo, as the agent's store writes it.
+TEST_F(CtlTest, PhotoSaveWritesTheSidecarBesideThePhoto) {
+  const auto outcome = Run("photo --save " + folder_.string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  const auto sidecar = folder_ / (std::string(FakeAgentControl::kPhotoName) + ".json");
+  const std::string json = ReadFile(sidecar);
+  kapfix::v1::PhotoMetadata metadata;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json, &metadata).ok()) << json;
+  EXPECT_EQ(metadata.file_name(), FakeAgentControl::kPhotoName);
+  EXPECT_EQ(metadata.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(metadata.view_speed_px_per_frame(), 0.75F);
+  EXPECT_EQ(json, kapfix::v1::PhotoSidecarJson(metadata));
+}
+
+TEST_F(CtlTest, PhotoSaveIntoAMissingFolderMakesIt) {
+  const auto folder = folder_ / "missing" / "deeper";
+  const auto outcome = Run("photo --save " + folder.string());
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_EQ(ReadFile(folder / FakeAgentControl::kPhotoName), FakeAgentControl::PhotoBytes());
+  EXPECT_TRUE(
+      std::filesystem::exists(folder / (std::string(FakeAgentControl::kPhotoName) + ".json")));
+}
+
+TEST_F(CtlTest, PhotoSaveWhereAFileIsInTheWayExitsTwo) {
+  const auto file = folder_ / "a-file";
+  std::ofstream(file) << "not a folder";
+  const auto outcome = Run("photo --save " + file.string());
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr(file.string()));
   EXPECT_TRUE(agent_.control.commands().empty());
 }
 

@@ -37,6 +37,8 @@ void PublishPhoto(kapfix::agent::StreamPublisher& publisher) {
     kapfix::v1::Photo chunk;
     chunk.mutable_metadata()->set_file_name(FakeAgentControl::kPhotoName);
     chunk.mutable_metadata()->set_format("png");
+    chunk.mutable_metadata()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);  // issue 13's fields
+    chunk.mutable_metadata()->set_view_speed_px_per_frame(0.75F);
     chunk.set_offset_bytes(offset);
     chunk.set_total_bytes(bytes.size());
     chunk.set_data(bytes.substr(offset, FakeAgentControl::kPhotoChunk));

@@ -65,5 +65,37 @@ TEST(CtlSettingKeyTest, NanParsesSoThatTheAgentRefusesIt) {
   EXPECT_TRUE(std::isnan(command->set_gains().p()));
 }
 
+// Issue 13: the photo keys come from PhotoSettings' schema with nothing added in kapfix-ctl.
+TEST(CtlSettingKeyTest, ShutterBestPhaseSetsThePhotoShutter) {
+  std::string error;
+  const auto command = MakeSetCommand("shutter", "best-phase", &error);
+  ASSERT_TRUE(command.has_value()) << error;
+  ASSERT_TRUE(command->has_set_photo());
+  EXPECT_EQ(command->set_photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FALSE(command->set_photo().has_window_s());
+}
+
+TEST(CtlSettingKeyTest, PhotoKeysSetTheirPhotoSettingsField) {
+  std::string error;
+  const auto window = MakeSetCommand("shutter_window", "2.5", &error);
+  ASSERT_TRUE(window.has_value()) << error;
+  EXPECT_FLOAT_EQ(window->set_photo().window_s(), 2.5F);
+  const auto cap = MakeSetCommand("shutter_window_cap", "4", &error);
+  ASSERT_TRUE(cap.has_value()) << error;
+  EXPECT_FLOAT_EQ(cap->set_photo().window_cap_s(), 4.0F);
+  const auto exposure = MakeSetCommand("photo_exposure", "8", &error);
+  ASSERT_TRUE(exposure.has_value()) << error;
+  EXPECT_FLOAT_EQ(exposure->set_photo().exposure_ms(), 8.0F);
+  const auto camera = MakeSetCommand("photo_camera", "gphoto2", &error);
+  ASSERT_TRUE(camera.has_value()) << error;
+  EXPECT_EQ(camera->set_photo().camera(), kapfix::v1::PHOTO_CAMERA_GPHOTO2);
+}
+
+TEST(CtlSettingKeyTest, UnknownShutterWordIsRefused) {
+  std::string error;
+  EXPECT_FALSE(MakeSetCommand("shutter", "best_phase", &error).has_value());
+  EXPECT_THAT(error, HasSubstr("best_phase"));
+}
+
 }  // namespace
 }  // namespace kapfix::ctl

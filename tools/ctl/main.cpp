@@ -27,6 +27,7 @@
 #include "tools/ctl/agent_link_client.hpp"
 #include "tools/ctl/message_text.hpp"
 #include "tools/ctl/photo_assembler.hpp"
+#include "tools/ctl/photo_saving.hpp"
 #include "tools/ctl/session_recorder.hpp"
 #include "tools/ctl/setting_key.hpp"
 
@@ -288,8 +289,8 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
   command.mutable_take_photo()->set_note(note);
   if (save_folder.empty()) return RunSimple(link, std::move(command));
 
-  if (!std::filesystem::is_directory(save_folder)) {
-    Error("--save: '" + save_folder + "' is not a folder");
+  if (std::string why; !kapfix::link::PrepareSaveFolder(save_folder, &why)) {
+    Error("--save: " + why);
     return kBadArguments;
   }
   // Before the client: its I/O thread uses them until the client is destroyed.
@@ -309,7 +310,7 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
   while (!g_interrupted.load()) {
     if (const auto photo = photos.Take(std::chrono::milliseconds(50))) {
       try {
-        PrintLine(kapfix::link::PhotoAssembler::Save(*photo, save_folder).string());
+        PrintLine(kapfix::link::SavePhotoWithSidecar(*photo, save_folder).string());
       } catch (const std::exception& error) {
         Error(error.what());
         return kBadArguments;
@@ -328,8 +329,9 @@ int RunPhoto(const LinkArguments& link, const std::string& save_folder, const st
 int RunResync(const LinkArguments& link, std::int64_t photos_since_us,
               const std::string& save_folder) {
   const auto start = Clock::now();
-  if (!save_folder.empty() && !std::filesystem::is_directory(save_folder)) {
-    Error("--save: '" + save_folder + "' is not a folder");
+  if (std::string why;
+      !save_folder.empty() && !kapfix::link::PrepareSaveFolder(save_folder, &why)) {
+    Error("--save: " + why);
     return kBadArguments;
   }
   // Before the client: its I/O thread uses them until the client is destroyed.
@@ -390,7 +392,7 @@ int RunResync(const LinkArguments& link, std::int64_t photos_since_us,
     }
     if (const auto photo = photos.Take(std::chrono::milliseconds(20))) {
       try {
-        PrintLine("photo " + kapfix::link::PhotoAssembler::Save(*photo, save_folder).string());
+        PrintLine("photo " + kapfix::link::SavePhotoWithSidecar(*photo, save_folder).string());
       } catch (const std::exception& error) {
         Error(error.what());
         return kBadArguments;
@@ -527,7 +529,9 @@ int Main(int argc, char** argv) {
   std::string save_folder;
   std::string note;
   auto* photo = app.add_subcommand("photo", "take a stabilised photo on the agent");
-  photo->add_option("--save", save_folder, "also receive it and save it in this folder");
+  photo->add_option("--save", save_folder,
+                    "also receive it and save it with its JSON sidecar in this folder (made "
+                    "when missing)");
   photo->add_option("--note", note, "text stored in the photo's sidecar");
 
   std::int64_t resync_since_us = 0;

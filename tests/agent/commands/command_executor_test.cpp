@@ -74,6 +74,49 @@ TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
   EXPECT_DOUBLE_EQ(rig.state.settings()->photos.interval_s, 5);
 }
 
+// Issue 13: set_photo was "command not known"; now it is applied, shown in the state, and the
+// photo taker's shutter follows it.
+TEST(CommandExecutorTest, SetPhotoIsAppliedShownAndReachesTheShutter) {
+  TempDir temp;
+  Rig rig(temp.path() / "photos");
+  kapfix::v1::Command command;
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  command.mutable_set_photo()->set_exposure_ms(5.0F);
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  ASSERT_TRUE(reply.ok()) << reply.reason();
+  EXPECT_EQ(rig.state.settings()->photos.shutter, ShutterMode::kBestPhase);
+  EXPECT_EQ(rig.executor.State().photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(rig.executor.State().photo().exposure_ms(), 5.0F);
+
+  kapfix::v1::Command take;
+  take.mutable_take_photo()->set_note("ridge");
+  ASSERT_TRUE(rig.executor.Execute(take).ok());
+  TelemetryRecord record;
+  record.found = true;
+  rig.photos.OnStep(CapturedFrame{cv::Mat(24, 32, CV_8UC3, cv::Scalar(90, 90, 90)), 0, 0},
+                    FrameOutcome{}, record);
+  rig.photos.Flush();
+  const auto saved = rig.photos.Saved();
+  ASSERT_EQ(saved.size(), 1u);
+  EXPECT_EQ(saved[0].shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(saved[0].exposure_ms(), 5.0F);
+  // A first frame: nothing to predict from yet.
+  EXPECT_NE(saved[0].shutter_reason().find("no trained predictor"), std::string::npos)
+      << saved[0].shutter_reason();
+}
+
+TEST(CommandExecutorTest, SetPhotoWindowBeyondTheCapIsRefused) {
+  TempDir temp;
+  Rig rig(temp.path());
+  kapfix::v1::Command command;
+  command.mutable_set_photo()->set_window_s(12.0F);  // the cap is 10 s
+  const kapfix::v1::Reply reply = rig.executor.Execute(command);
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
+  EXPECT_NE(reply.reason().find("window_cap_s"), std::string::npos) << reply.reason();
+  EXPECT_DOUBLE_EQ(rig.state.settings()->photos.window_s, 0.0);
+}
+
 TEST(CommandExecutorTest, TakePhotoIsAcceptedWhenTheFolderIsWritable) {
   TempDir temp;
   Rig rig(temp.path() / "photos");

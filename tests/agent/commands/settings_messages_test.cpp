@@ -216,5 +216,48 @@ TEST(SettingsMessagesTest, FilledSettingsAppliedBackChangeNothing) {
   EXPECT_EQ(copy.search.sampling.kind, config.search.sampling.kind);
 }
 
+// Issue 13: set_photo changes the shutter settings it names and AgentState.photo shows them;
+// the state's settings applied back change nothing.
+TEST(SettingsMessagesTest, SetPhotoRoundTripsThroughTheState) {
+  AgentConfig config;
+  kapfix::v1::Command command;
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  command.mutable_set_photo()->set_window_s(2.5F);
+  command.mutable_set_photo()->set_exposure_ms(4.0F);
+  std::string error;
+  ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
+  EXPECT_EQ(config.photos.shutter, ShutterMode::kBestPhase);
+  EXPECT_DOUBLE_EQ(config.photos.window_s, 2.5);
+  EXPECT_DOUBLE_EQ(config.photos.window_cap_s, 10.0);  // not named: kept
+  EXPECT_DOUBLE_EQ(config.photos.exposure_ms, 4.0);
+  kapfix::v1::AgentState state;
+  FillSettings(config, &state);
+  EXPECT_EQ(state.photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(state.photo().window_s(), 2.5F);
+  EXPECT_FLOAT_EQ(state.photo().window_cap_s(), 10.0F);
+  EXPECT_FLOAT_EQ(state.photo().exposure_ms(), 4.0F);
+  EXPECT_EQ(state.photo().camera(), kapfix::v1::PHOTO_CAMERA_AGENT);
+  AgentConfig copy;
+  kapfix::v1::Command back;
+  *back.mutable_set_photo() = state.photo();
+  ASSERT_TRUE(ApplySettingsCommand(back, &copy, &error)) << error;
+  EXPECT_EQ(copy.photos.shutter, ShutterMode::kBestPhase);
+  EXPECT_DOUBLE_EQ(copy.photos.window_s, 2.5);
+  EXPECT_DOUBLE_EQ(copy.photos.exposure_ms, 4.0);
+}
+
+TEST(SettingsMessagesTest, SetPhotoWindowBeyondTheCapChangesNothing) {
+  AgentConfig config;
+  kapfix::v1::Command command;
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  command.mutable_set_photo()->set_window_cap_s(2.0F);
+  command.mutable_set_photo()->set_window_s(3.0F);
+  std::string error;
+  EXPECT_FALSE(ApplySettingsCommand(command, &config, &error));
+  EXPECT_NE(error.find("longer than photos.window_cap_s"), std::string::npos) << error;
+  EXPECT_EQ(config.photos.shutter, ShutterMode::kInterval);
+  EXPECT_DOUBLE_EQ(config.photos.window_cap_s, 10.0);
+}
+
 }  // namespace
 }  // namespace kapfix::agent

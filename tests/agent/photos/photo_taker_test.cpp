@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -169,6 +170,58 @@ TEST(PhotoTakerTest, PhotoCarriesTheStepsMeasurements) {
   EXPECT_EQ(m.lens_profile(), "6mm");
   EXPECT_EQ(m.width_px(), 64u);
   EXPECT_EQ(m.height_px(), 48u);
+}
+
+// Issue 13: the stored sidecar carries the shot's quality, the shutter's account and the note.
+TEST(PhotoTakerTest, SidecarCarriesTheQualityFieldsAndTheNote) {
+  Rig rig;
+  std::string error;
+  TelemetryRecord before = Record(2);
+  before.found = true;
+  before.displacement_x_px = 1.0;
+  before.displacement_y_px = 1.0;
+  rig.taker.OnStep(Frame(2), FrameOutcome{}, before);
+  ASSERT_TRUE(rig.taker.Request("tower", &error)) << error;
+  TelemetryRecord record = Record(3);
+  record.found = true;
+  record.displacement_x_px = 4.0;  // moved (3, 4) px since frame 2; 5 px off the reference
+  record.displacement_y_px = 5.0;
+  FrameOutcome outcome;
+  outcome.patch = cv::Rect(8, 8, 16, 16);
+  rig.taker.OnStep(Frame(3), outcome, record);
+  rig.taker.Flush();
+  const std::vector<kapfix::v1::PhotoMetadata> stored = rig.store.ListSince(0);  // the sidecars
+  ASSERT_EQ(stored.size(), 1u);
+  const kapfix::v1::PhotoMetadata& m = stored[0];
+  EXPECT_EQ(m.note(), "tower");
+  EXPECT_NEAR(m.residual_offset_px(), std::hypot(4.0, 5.0), 1e-5);
+  EXPECT_NEAR(m.view_speed_px_per_frame(), 5.0, 1e-5);
+  // 10 ms of a 100 ms frame: a tenth of the frame's travel.
+  EXPECT_NEAR(m.view_blur_px(), 0.5, 1e-5);
+  EXPECT_FALSE(m.lock_lost());
+  EXPECT_EQ(m.shutter(), kapfix::v1::SHUTTER_INTERVAL);
+  EXPECT_FLOAT_EQ(m.shutter_wait_s(), 0.0F);
+  EXPECT_EQ(m.shutter_reason(), "interval shutter: at once");
+  EXPECT_FLOAT_EQ(m.exposure_ms(), 10.0F);
+  EXPECT_EQ(m.camera(), kapfix::v1::PHOTO_CAMERA_AGENT);
+  EXPECT_GT(m.sharpness_frame(), 0.0F);  // a random-noise frame is all detail
+  EXPECT_GT(m.sharpness_patch(), 0.0F);
+  EXPECT_NE(m.sharpness_patch(), m.sharpness_frame());
+}
+
+TEST(PhotoTakerTest, LostLockIsMarkedInTheSidecar) {
+  Rig rig;
+  std::string error;
+  ASSERT_TRUE(rig.taker.Request("", &error)) << error;
+  TelemetryRecord record = Record(0);
+  record.found = false;
+  record.lock_lost = true;
+  rig.taker.OnStep(Frame(0), FrameOutcome{}, record);
+  rig.taker.Flush();
+  const auto saved = rig.taker.Saved();
+  ASSERT_EQ(saved.size(), 1u);
+  EXPECT_TRUE(saved[0].lock_lost());
+  EXPECT_FLOAT_EQ(saved[0].view_speed_px_per_frame(), 0.0F);  // not measured
 }
 
 TEST(PhotoTakerTest, IntervalTakesAPhotoEveryNSecondsOfCaptureTime) {

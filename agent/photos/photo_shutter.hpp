@@ -1,0 +1,46 @@
+#pragma once
+
+#include <deque>
+#include <mutex>
+#include <optional>
+
+#include "agent/config/photo_config.hpp"
+#include "agent/pipeline/step_observer.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
+#include "common/shutter/swing_view_forecaster.hpp"
+
+namespace kapfix::agent {
+
+// When the PhotoTaker's photo is taken (issue 13): the BestPhaseShutter over a
+// SwingViewForecaster fed each control step's measured residual offset and servo angles.
+// The frame period is measured from the frames' capture times (the median of the recent
+// intervals), so a camera that runs slower than configured is planned for as it runs.
+// Set() may come from any thread; the rest is the control thread's.
+class PhotoShutter {
+ public:
+  PhotoShutter();
+
+  // The photo settings to use from the next frame on (an open window keeps its end).
+  // `config` must be IsValid.
+  void Set(const PhotoConfig& config);
+
+  void Request();  // a photo is wanted: opens a window at the next frame
+  bool window_open() const { return shutter_.window_open(); }
+  // Every control step. The shot when the shutter fires on this frame.
+  std::optional<ShutterShot> OnStep(const CapturedFrame& frame, const TelemetryRecord& record);
+
+  ShutterMode mode() const { return shutter_.options().mode; }
+  double exposure_ms() const { return shutter_.options().exposure_ms; }
+
+ private:
+  std::mutex mutex_;
+  std::optional<PhotoConfig> pending_;  // guarded by mutex_
+
+  SwingViewForecaster forecaster_;
+  BestPhaseShutter shutter_;
+  PhotoConfig config_;
+  std::optional<std::int64_t> last_time_us_;
+  std::deque<std::int64_t> intervals_us_;  // [µs] between the last frames, newest last
+};
+
+}  // namespace kapfix::agent
