@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "agent/agent.hpp"
-#include "kapfix/link/curve_key_file.hpp"
+#include "link/curve_key_file.hpp"
 
 namespace kapfix::agent {
 namespace {
