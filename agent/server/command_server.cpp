@@ -248,6 +248,12 @@ CommandServer::Counters CommandServer::counters() const {
   counters.heartbeats_ignored = impl_->heartbeats_ignored.load();
   counters.last_station_heard_us = impl_->last_station_heard_us.load();
   if (impl_->zap) counters.keys_refused = impl_->zap->counters().refused;
+  // Made before Start() returns (the bound promise orders it), never replaced while running.
+  if (impl_->monitor) {
+    const ConnectionMonitor::Counters connections = impl_->monitor->counters();
+    counters.handshakes_failed = connections.handshakes_failed;
+    counters.over_budget = connections.over_budget;
+  }
   return counters;
 }
 
