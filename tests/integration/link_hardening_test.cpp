@@ -260,7 +260,8 @@ long WaitForResident(pid_t pid, Condition done, std::chrono::seconds limit) {
 }
 
 constexpr int kHugeFrames = 2000;
-constexpr std::size_t kHugeFrameBytes = 200 * 1000;  // under the command socket's 256 KiB
+constexpr std::size_t kHugeFrameBytes =
+    std::size_t{200} * 1000;  // under the command socket's 256 KiB
 
 // Item 4: an unfinished multipart message (2,000 frames of 200 KB, never ended) pinned 600 MB
 // that stayed after the peer closed. libzmq holds it while the peer is connected (it assembles
@@ -284,7 +285,7 @@ TEST(LinkHardeningTest, UnfinishedMultipartIsGivenBackWhenThePeerCloses) {
       std::chrono::seconds(120));
   peer.Close();
   const long after_kb = WaitForResident(
-      agent.pid(), [&](long kb) { return kb - before_kb < 16 * 1024; }, std::chrono::seconds(60));
+      agent.pid(), [&](long kb) { return kb - before_kb < 16L * 1024; }, std::chrono::seconds(60));
   std::printf(
       "agent RSS %ld kB before, %ld kB holding an unfinished %d x %zu B message, %ld kB "
       "after its peer closed\n",
@@ -317,7 +318,7 @@ TEST(LinkHardeningTest, MultipartOf2000FramesIsRefusedAndItsMemoryGivenBack) {
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_MALFORMED);
   EXPECT_THAT(reply.reason(), HasSubstr("got 2000 frames"));
   const long after_kb = WaitForResident(
-      agent.pid(), [&](long kb) { return kb - before_kb < 16 * 1024; }, std::chrono::seconds(60));
+      agent.pid(), [&](long kb) { return kb - before_kb < 16L * 1024; }, std::chrono::seconds(60));
   std::printf("agent RSS %ld kB before, %ld kB after refusing a %d x %zu B message\n", before_kb,
               after_kb, kHugeFrames, kHugeFrameBytes);
   EXPECT_LT(after_kb - before_kb, 16 * 1024);

@@ -262,8 +262,10 @@ TEST_F(CurveLinkTest, RefusedHandshakesAreLoggedInSummaryWhateverTheKeyOrNumber)
   impostor.Start();
   for (int i = 0; i < kEach; ++i) SendPlainGreeting(PortOf(agent_.command_endpoint));
   ASSERT_TRUE(WaitUntil([&] { return agent_.server.counters().keys_refused >= kEach; }));
-  ASSERT_TRUE(WaitUntil([&] { return agent_.server.counters().handshakes_failed >= 2 * kEach; }))
-      << agent_.server.counters().handshakes_failed << " failed handshakes counted";
+  ASSERT_TRUE(WaitUntil([&] {
+    return agent_.server.counters().handshakes_failed >= std::uint64_t{2} * kEach;
+  })) << agent_.server.counters().handshakes_failed
+      << " failed handshakes counted";
   refused.clear();
   const auto elapsed = std::chrono::steady_clock::now() - start;
 
