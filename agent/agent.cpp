@@ -12,16 +12,16 @@
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/sim_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
-#include "agent/server/link_endpoint.hpp"
-#include "agent/server/peer_resource_limits.hpp"
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
 #include "agent/still_camera/gphoto2_still_camera.hpp"
 #include "agent/still_camera/still_camera_trigger.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
-#include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/curve_key_file.hpp"
+#include "link/link_endpoint.hpp"
+#include "link/peer_resource_limits.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -112,7 +112,7 @@ AgentConfig BuiltInConfig(MotionKind motion) {
 bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error) {
   for (const std::string& address : {link.command_address, link.stream_address}) {
     // Parsed as the servers parse it: exactly one endpoint, judged on its literal address.
-    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(address, error);
+    const std::optional<link::LinkEndpoint> endpoint = link::ParseLinkEndpoint(address, error);
     if (!endpoint) return false;
     if (!endpoint->loopback && link.curve_secret_key_file.empty() && !insecure) {
       if (error) {
@@ -241,12 +241,12 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   // Before binding: descriptors for many connections plus the photos (issue 15, item 3).
   constexpr std::uint64_t kWantedOpenFiles = 65536;
   constexpr std::uint64_t kEnoughOpenFiles = 4096;  // ~100 s of 33 new connections a second
-  const std::uint64_t open_files = RaiseOpenFileLimit(kWantedOpenFiles);
+  const std::uint64_t open_files = link::RaiseOpenFileLimit(kWantedOpenFiles);
   if (open_files < kEnoughOpenFiles) {
     spdlog::warn("link: at most {} open files (wanted {}): raise LimitNOFILE", open_files,
                  kWantedOpenFiles);
   }
-  ReturnLargeBuffersWhenFreed();
+  link::ReturnLargeBuffersWhenFreed();
   kapfix::v1::QuietLibprotobufLog();  // invalid UTF-8 from a peer: refused, not printed
   // Each server's connection budget: half of the descriptors, less a reserve for photos,
   // calibrations and logs.

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build/ci}
 [ -f "$build/compile_commands.json" ] || { echo "run-tidy: no $build/compile_commands.json (configure first)" >&2; exit 2; }
-mapfile -t files < <(git ls-files 'common/*.cpp' 'tools/*.cpp' 'agent/*.cpp' 'proto/*.cpp' 'bench/*.cpp' 'groundstation/*.cpp')
+mapfile -t files < <(git ls-files 'common/*.cpp' 'tools/*.cpp' 'agent/*.cpp' 'link/*.cpp' 'proto/*.cpp' 'bench/*.cpp' 'groundstation/*.cpp')
 echo "run-tidy: ${#files[@]} files"
 log=$(mktemp "${TMPDIR:-/tmp}/kapfix-tidy.XXXXXX")
 trap 'rm -f "$log"' EXIT

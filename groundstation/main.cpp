@@ -18,8 +18,8 @@
 #include "groundstation/recording/recording_controls.hpp"
 #include "groundstation/snapshot/ssp_screenshot.hpp"
 #include "groundstation/status/connection_bar.hpp"
-#include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/curve_key_file.hpp"
 
 namespace {
 

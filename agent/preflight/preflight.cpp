@@ -11,7 +11,7 @@
 #include "agent/agent.hpp"
 #include "agent/preflight/still_camera_check.hpp"
 #include "agent/still_camera/gphoto2_still_camera.hpp"
-#include "kapfix/link/curve_key_file.hpp"
+#include "link/curve_key_file.hpp"
 
 namespace kapfix::agent {
 namespace {

@@ -14,11 +14,11 @@
 
 #include "agent/server/command_intake.hpp"
 #include "agent/server/connection_monitor.hpp"
-#include "agent/server/link_endpoint.hpp"
 #include "agent/server/request_frames.hpp"
 #include "agent/server/socket_thread_start.hpp"
-#include "agent/server/whole_message_receive.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/link_endpoint.hpp"
+#include "link/whole_message_receive.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -109,7 +109,8 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
         "command server", ConnectionMonitorOptions{.max_connections = options.max_connections});
     monitor->Start(*context, *socket);
     std::string why;
-    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(options.bind_endpoint, &why);
+    const std::optional<link::LinkEndpoint> endpoint =
+        link::ParseLinkEndpoint(options.bind_endpoint, &why);
     if (!endpoint) {
       bound.set_exception(std::make_exception_ptr(std::runtime_error("command server: " + why)));
       return;
@@ -129,7 +130,7 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
     Request request;
     try {
       // Blocks; Stop() shuts the context down, which makes it throw ETERM.
-      request.frame_count = ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames);
+      request.frame_count = link::ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames);
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;  // EINTR (a signal): the partial request is lost, its peer times out
@@ -247,6 +248,12 @@ CommandServer::Counters CommandServer::counters() const {
   counters.heartbeats_ignored = impl_->heartbeats_ignored.load();
   counters.last_station_heard_us = impl_->last_station_heard_us.load();
   if (impl_->zap) counters.keys_refused = impl_->zap->counters().refused;
+  // Made before Start() returns (the bound promise orders it), never replaced while running.
+  if (impl_->monitor) {
+    const ConnectionMonitor::Counters connections = impl_->monitor->counters();
+    counters.handshakes_failed = connections.handshakes_failed;
+    counters.over_budget = connections.over_budget;
+  }
   return counters;
 }
 

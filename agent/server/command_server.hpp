@@ -60,6 +60,8 @@ class CommandServer {
     std::int64_t last_station_heard_us = 0;  // [µs since epoch] last accepted command or
                                              // heartbeat; 0 = never (link-loss detection)
     std::uint64_t keys_refused = 0;          // [count] CurveZMQ handshakes refused (unknown key)
+    std::uint64_t handshakes_failed = 0;     // [count] ZMTP/CurveZMQ handshakes that failed
+    std::uint64_t over_budget = 0;           // [count] connections shut down over the budget
   };
 
   // `control` must outlive the server (or at least Stop()).

@@ -1,10 +1,16 @@
 #include "agent/server/connection_monitor.hpp"
 
+#include <linux/tcp.h>  // tcp_info with tcpi_bytes_received (glibc's <netinet/tcp.h> lacks it)
+#include <netinet/in.h>
 #include <spdlog/spdlog.h>
 #include <sys/socket.h>
 #include <zmq.h>
 
+#include <cstddef>
 #include <cstring>
+#include <list>
+#include <optional>
+#include <unordered_map>
 #include <utility>
 
 namespace kapfix::agent {
@@ -13,6 +19,22 @@ namespace {
 constexpr int kEvents = ZMQ_EVENT_ACCEPTED | ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_CLOSED |
                         ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
                         ZMQ_EVENT_HANDSHAKE_FAILED_AUTH;
+
+// [bytes] a ZMTP greeting: a peer that has sent less cannot have begun a handshake, so it
+// cannot be a station yet.
+constexpr std::uint64_t kGreetingBytes = 64;
+
+// [bytes] what the kernel has received on `fd` from its peer; std::nullopt when it is not a
+// TCP connection (ipc) or no longer open.
+std::optional<std::uint64_t> BytesReceived(int fd) {
+  tcp_info info{};
+  socklen_t size = sizeof info;
+  if (::getsockopt(fd, IPPROTO_TCP, TCP_INFO, &info, &size) != 0 ||
+      size < offsetof(tcp_info, tcpi_bytes_received) + sizeof info.tcpi_bytes_received) {
+    return std::nullopt;
+  }
+  return info.tcpi_bytes_received;
+}
 
 }  // namespace
 
@@ -40,7 +62,23 @@ ConnectionMonitor::Counters ConnectionMonitor::counters() const {
 
 void ConnectionMonitor::Serve(zmq::socket_t& events) {
   using Clock = std::chrono::steady_clock;
-  std::unordered_set<int> open;  // descriptors of the connections now open
+  // Descriptors of the connections now open, oldest first, and where each is in that order.
+  std::list<int> open_order;
+  std::unordered_map<int, std::list<int>::iterator> open;
+  const auto close_record = [&](int fd) {
+    const auto found = open.find(fd);
+    if (found == open.end()) return;
+    open_order.erase(found->second);
+    open.erase(found);
+  };
+  // The oldest open connection that has not sent a whole greeting; -1 if every one has.
+  const auto silent_one = [&]() {
+    for (const int fd : open_order) {
+      const std::optional<std::uint64_t> received = BytesReceived(fd);
+      if (received && *received < kGreetingBytes) return fd;
+    }
+    return -1;
+  };
   std::uint64_t failed_unreported = 0;
   std::uint64_t over_budget_unreported = 0;
   Clock::time_point last_summary{};
@@ -59,15 +97,22 @@ void ConnectionMonitor::Serve(zmq::socket_t& events) {
         const int fd = static_cast<int>(value);
         if (id == ZMQ_EVENT_ACCEPTED) {
           accepted_.fetch_add(1);
-          if (open.size() >= options_.max_connections) {
-            ::shutdown(fd, SHUT_RDWR);
+          close_record(fd);  // a number libzmq reused before its close event reached us
+          bool admitted = open.size() < options_.max_connections;
+          if (!admitted) {
+            // Over the budget: a silent connection makes room, so that silent ones cannot keep
+            // a station out; only when none is silent is the newcomer refused.
+            const int silent = silent_one();
+            admitted = silent >= 0;
+            const int refused = admitted ? silent : fd;
+            ::shutdown(refused, SHUT_RDWR);
+            close_record(refused);
             over_budget_.fetch_add(1);
             ++over_budget_unreported;
-          } else {
-            open.insert(fd);
           }
+          if (admitted) open.emplace(fd, open_order.insert(open_order.end(), fd));
         } else if (id == ZMQ_EVENT_DISCONNECTED || id == ZMQ_EVENT_CLOSED) {
-          open.erase(fd);
+          close_record(fd);
         } else if (id == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL ||
                    id == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL ||
                    id == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) {

@@ -2,11 +2,14 @@
 
 // Internal to kapfix_agent_server (includes ZeroMQ): watches one server socket's connections
 // through libzmq's socket monitor, on its own thread (issue 15, items 3 and 11).
-// - Connection budget: at most max_connections at once; a connection accepted beyond it is
-//   shut down at once (its descriptor is libzmq's; shutdown(), not close(), so libzmq sees
-//   the end and frees it). Together with ZMQ_HANDSHAKE_IVL, which closes a connection that
-//   stays silent, and the raised open-file limit, a flood of silent connections cannot take
-//   the descriptors an authorised station or a photo needs.
+// - Connection budget: at most max_connections at once. A connection accepted beyond it makes
+//   room by shutting down the oldest open one that has not sent a whole ZMTP greeting (64
+//   bytes, from the kernel's TCP_INFO): that one cannot be a station yet. Only when every open
+//   connection has (stations, peers in their handshake) is the newcomer shut down. Descriptors
+//   are libzmq's: shutdown(), not close(), so libzmq sees the end and frees them. Together with
+//   ZMQ_HANDSHAKE_IVL, which closes a connection that stays silent, and the raised open-file
+//   limit, a flood of silent connections cannot keep an authorised station out nor take the
+//   descriptors a photo needs.
 // - Refused handshakes (garbage, forged keys, protocol errors; ZAP refusals too) are logged in
 //   one summary line per period, whatever their number or source, so a peer cannot flood the
 //   log (nor the stations, which receive the log lines).
@@ -16,7 +19,6 @@
 #include <cstdint>
 #include <string>
 #include <thread>
-#include <unordered_set>
 #include <zmq.hpp>
 
 namespace kapfix::agent {
@@ -30,7 +32,8 @@ class ConnectionMonitor {
  public:
   struct Counters {
     std::uint64_t accepted = 0;           // [count] TCP connections accepted
-    std::uint64_t over_budget = 0;        // [count] of those shut down at once
+    std::uint64_t over_budget = 0;        // [count] shut down over the budget (newcomer
+                                          // or a silent one making room)
     std::uint64_t handshakes_failed = 0;  // [count] ZMTP/CurveZMQ handshakes refused
   };
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "kapfix/link/curve_key_file.hpp"
+#include "link/curve_key_file.hpp"
 
 namespace kapfix::agent {
 

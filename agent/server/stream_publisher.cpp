@@ -18,10 +18,10 @@
 #include <zmq.hpp>
 
 #include "agent/server/connection_monitor.hpp"
-#include "agent/server/link_endpoint.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/link_endpoint.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -117,7 +117,8 @@ void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
         "stream publisher", ConnectionMonitorOptions{.max_connections = options.max_connections});
     monitor->Start(*context, *socket);
     std::string why;
-    const std::optional<LinkEndpoint> endpoint = ParseLinkEndpoint(options.bind_endpoint, &why);
+    const std::optional<link::LinkEndpoint> endpoint =
+        link::ParseLinkEndpoint(options.bind_endpoint, &why);
     if (!endpoint) {
       bound.set_exception(std::make_exception_ptr(std::runtime_error("stream publisher: " + why)));
       return;

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "agent/server/whole_message_receive.hpp"
+#include "link/whole_message_receive.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -129,7 +129,7 @@ void ZapHandler::Serve(zmq::socket_t& socket) {
     std::vector<zmq::message_t> request;
     try {
       // A well-formed request has 7 frames; libzmq is the only sender here.
-      (void)ReceiveWholeMessage(socket, kCredentials + 1, &request);
+      (void)link::ReceiveWholeMessage(socket, kCredentials + 1, &request);
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;

@@ -15,7 +15,7 @@
 
 #include "groundstation/client/agent_address.hpp"
 #include "groundstation/client/agent_client.hpp"
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_pair.hpp"
 
 namespace kapfix::link {
 class AgentLinkClient;

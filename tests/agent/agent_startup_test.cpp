@@ -10,9 +10,9 @@
 #include <fstream>
 
 #include "agent/agent.hpp"
-#include "kapfix/link/curve_key_file.hpp"
-#include "kapfix/link/curve_key_pair.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/curve_key_file.hpp"
+#include "link/curve_key_pair.hpp"
 #include "tests/link/link_test_support.hpp"
 
 namespace kapfix::agent {

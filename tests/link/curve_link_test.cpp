@@ -4,14 +4,20 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <memory>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_pair.hpp"
 #include "tests/link/link_test_support.hpp"
 #include "tools/ctl/agent_link_client.hpp"
 
@@ -55,6 +61,66 @@ class SilentTcpConnection {
   int fd_;
   bool connected_ = false;
 };
+
+// The agent's log lines (spdlog's default logger) while this lives.
+class CapturedLog {
+ public:
+  CapturedLog() : previous_(spdlog::default_logger()) {
+    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(lines_, /*force_flush=*/true);
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("captured", sink));
+  }
+  ~CapturedLog() { spdlog::set_default_logger(previous_); }
+  CapturedLog(const CapturedLog&) = delete;
+  CapturedLog& operator=(const CapturedLog&) = delete;
+
+  // [count] lines so far containing `first` and, after it, `second`.
+  int Count(const std::string& first, const std::string& second) {
+    spdlog::default_logger()->flush();
+    std::istringstream all(lines_.str());
+    int count = 0;
+    for (std::string line; std::getline(all, line);) {
+      const std::size_t at = line.find(first);
+      count += at != std::string::npos && line.find(second, at) != std::string::npos;
+    }
+    return count;
+  }
+
+ private:
+  std::shared_ptr<spdlog::logger> previous_;
+  std::ostringstream lines_;
+};
+
+// A ZMTP 3.0 greeting offering the NULL mechanism to a CurveZMQ server: a garbage handshake.
+void SendPlainGreeting(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
+    std::string greeting(64, '\0');
+    greeting[0] = static_cast<char>(0xFF);
+    greeting[9] = 0x7F;
+    greeting[10] = 3;
+    greeting.replace(12, 4, "NULL");
+    (void)::send(fd, greeting.data(), greeting.size(), MSG_NOSIGNAL);
+    char byte = 0;
+    while (::recv(fd, &byte, 1, 0) > 0) {  // until the agent hangs up
+    }
+  }
+  ::close(fd);
+}
+
+// Waits until `done()` or 30 s pass (a hang guard only); whether it became true.
+template <typename Condition>
+bool WaitUntil(Condition done) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > give_up) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
 
 class CurveLinkTest : public ::testing::Test {
  protected:
@@ -174,6 +240,48 @@ TEST_F(CurveLinkTest, SilentTcpConnectionsDoNotBlockAnAuthorisedStation) {
   ASSERT_TRUE(reply.has_value());
   EXPECT_TRUE(reply->ok());
   EXPECT_TRUE(client.WaitForStreams(kWait));
+}
+
+// Issue 15, item 11: a fresh key per connection got one log line each (2,000 in 5.4 s, all
+// forwarded to the stations); forged-key and garbage handshakes got none. Now every refusal is
+// counted and the log gets at most one line per 10 s of each kind in all, whatever the number
+// of keys or connections.
+TEST_F(CurveLinkTest, RefusedHandshakesAreLoggedInSummaryWhateverTheKeyOrNumber) {
+  CapturedLog log;
+  const auto start = std::chrono::steady_clock::now();
+  constexpr int kEach = 20;
+  std::vector<std::unique_ptr<AgentLinkClient>> refused;
+  for (int i = 0; i < kEach; ++i) {  // a fresh key each, as an attacker would
+    refused.push_back(
+        std::make_unique<AgentLinkClient>(ClientOptions(StationKeys(GenerateCurveKeyPair()))));
+    refused.back()->Start();
+  }
+  CurveKeyPair forged = GenerateCurveKeyPair();
+  forged.public_key = authorised_.public_key;
+  AgentLinkClient impostor(ClientOptions(StationKeys(forged)));
+  impostor.Start();
+  for (int i = 0; i < kEach; ++i) SendPlainGreeting(PortOf(agent_.command_endpoint));
+  ASSERT_TRUE(WaitUntil([&] { return agent_.server.counters().keys_refused >= kEach; }));
+  ASSERT_TRUE(WaitUntil([&] {
+    return agent_.server.counters().handshakes_failed >= std::uint64_t{2} * kEach;
+  })) << agent_.server.counters().handshakes_failed
+      << " failed handshakes counted";
+  refused.clear();
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+
+  // One line per 10 s period at most (and a first line at once), of each kind.
+  const int allowed = 1 + static_cast<int>(elapsed / std::chrono::seconds(10));
+  const auto counters = agent_.server.counters();
+  const int key_lines = log.Count("command server: ", "refused a connection from");
+  const int summary_lines = log.Count("command server: ", "handshake(s) refused");
+  std::printf("%llu key refusals and %llu failed handshakes in %.1f s: %d + %d log lines\n",
+              static_cast<unsigned long long>(counters.keys_refused),
+              static_cast<unsigned long long>(counters.handshakes_failed),
+              std::chrono::duration<double>(elapsed).count(), key_lines, summary_lines);
+  EXPECT_GE(key_lines, 1);
+  EXPECT_LE(key_lines, allowed);
+  EXPECT_GE(summary_lines, 1);
+  EXPECT_LE(summary_lines, allowed);
 }
 
 }  // namespace

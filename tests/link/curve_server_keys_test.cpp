@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "kapfix/link/curve_key_file.hpp"
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_file.hpp"
+#include "link/curve_key_pair.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {

@@ -1,12 +1,12 @@
 // ParseLinkEndpoint (issue 15, item 2): exactly one endpoint per option, judged on its literal
 // address, one test per trick that got past the loopback-only rule.
-#include "agent/server/link_endpoint.hpp"
+#include "link/link_endpoint.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 TEST(LinkEndpointTest, SourceAndBindPairIsRefusedNamingTheSemicolon) {
@@ -68,4 +68,4 @@ TEST(LinkEndpointTest, EphemeralPortIsAccepted) {
 }
 
 }  // namespace
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -26,8 +26,8 @@
 #include <string>
 #include <string_view>
 
-#include "kapfix/link/curve_key_pair.hpp"
 #include "kapfix/v1/command.pb.h"
+#include "link/curve_key_pair.hpp"
 
 namespace kapfix::link {
 

@@ -19,11 +19,11 @@
 #include <string>
 #include <thread>
 
-#include "kapfix/link/curve_key_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/photo.pb.h"
 #include "kapfix/v1/slices.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/curve_key_file.hpp"
 #include "tools/ctl/agent_link_client.hpp"
 #include "tools/ctl/message_text.hpp"
 #include "tools/ctl/photo_assembler.hpp"

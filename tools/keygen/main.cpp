@@ -5,8 +5,8 @@
 #include <iostream>
 #include <string>
 
-#include "kapfix/link/curve_key_file.hpp"
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_file.hpp"
+#include "link/curve_key_pair.hpp"
 
 namespace {
 

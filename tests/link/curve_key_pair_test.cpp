@@ -1,4 +1,4 @@
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_pair.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "kapfix/link/curve_key_file.hpp"
+#include "link/curve_key_file.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

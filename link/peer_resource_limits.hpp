@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 // Raises the soft limit on open file descriptors towards `wanted` (at most the hard limit) and
 // returns the soft limit in force afterwards. The default soft limit (1,024) is what about 33
@@ -19,4 +19,4 @@ std::uint64_t RaiseOpenFileLimit(std::uint64_t wanted);
 // in the heap, counted in RSS, after the peer has gone.
 void ReturnLargeBuffersWhenFreed();
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,13 +1,13 @@
 #pragma once
 
-// Internal to kapfix_agent_server (includes ZeroMQ): receiving one whole multipart message
-// without letting a peer decide how much memory it takes.
+// For the socket threads of kapfix_link's users (includes ZeroMQ: link cppzmq to use it):
+// receiving one whole multipart message without keeping more of it than the reader needs.
 
 #include <cstddef>
 #include <vector>
 #include <zmq.hpp>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 // Blocks for the next message and reads all of its frames, keeping the first `keep` in
 // `frames` and discarding the rest; returns how many there were. The frames after the first
@@ -27,4 +27,4 @@ inline std::size_t ReceiveWholeMessage(zmq::socket_t& socket, std::size_t keep,
   return count;
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,11 +1,11 @@
-#include "agent/server/link_endpoint.hpp"
+#include "link/link_endpoint.hpp"
 
 #include <arpa/inet.h>
 
 #include <array>
 #include <cctype>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 constexpr std::string_view kTcp = "tcp://";
@@ -84,4 +84,4 @@ std::optional<LinkEndpoint> ParseLinkEndpoint(std::string_view text, std::string
   return LinkEndpoint{"tcp://" + std::string(canonical.data()) + ":" + port_text, bytes[0] == 127};
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,11 +1,11 @@
-#include "agent/server/peer_resource_limits.hpp"
+#include "link/peer_resource_limits.hpp"
 
 #include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 std::uint64_t RaiseOpenFileLimit(std::uint64_t wanted) {
   rlimit limit{};
@@ -26,4 +26,4 @@ void ReturnLargeBuffersWhenFreed() {
   mallopt(M_MMAP_THRESHOLD, kMmapThresholdBytes);
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,4 +1,4 @@
-#include "kapfix/link/curve_key_file.hpp"
+#include "link/curve_key_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

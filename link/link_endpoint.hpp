@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 struct LinkEndpoint {
   std::string canonical;  // e.g. "tcp://127.0.0.1:5555", "tcp://*:0", "ipc:///run/kapfix"
@@ -27,4 +27,4 @@ struct LinkEndpoint {
 // PORT 0…65535 or '*'; ipc://PATH; inproc://NAME.
 std::optional<LinkEndpoint> ParseLinkEndpoint(std::string_view text, std::string* error);
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

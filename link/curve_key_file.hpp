@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "kapfix/link/curve_key_pair.hpp"
+#include "link/curve_key_pair.hpp"
 
 namespace kapfix::link {
 
