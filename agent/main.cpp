@@ -55,6 +55,7 @@ int Main(int argc, char** argv) {
   std::string state_dir;
   std::string start_mode = "fixate";
   bool insecure = false;
+  bool no_resume = false;
   bool max_speed = false;
   // The simulated world's disturbances (issue 9): a preset, then single flags over it.
   std::string world_preset;
@@ -92,6 +93,9 @@ int Main(int argc, char** argv) {
       ->check(CLI::IsMember({"idle", "fixate", "follow", "ssp", "pss", "calibrate"}));
   app.add_flag("--insecure", insecure,
                "let the link listen beyond this machine without CurveZMQ keys (not for a field)");
+  app.add_flag("--no-resume", no_resume,
+               "start from the configuration, not from the settings, mode and fixated view the "
+               "previous run stored in the state folder (also config key resume: false)");
   app.add_flag("--max-speed", max_speed,
                "simulation: frames as fast as the machine allows, not at the camera's rate");
   // Field deployment (issue 10): one device from the command line, and checks without flying.
@@ -190,6 +194,7 @@ int Main(int argc, char** argv) {
   options.start_mode = *ParseAgentMode(start_mode);
   options.keep_telemetry = !report_dir.empty();
   options.insecure = insecure;
+  options.resume = !no_resume;
   if (frames) options.frames = *frames;
   if (duration_s) {
     options.frames = static_cast<std::uint64_t>(std::llround(*duration_s * config.camera.fps));
