@@ -152,6 +152,7 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     slice_ = std::clamp(pending.resume->second, 1, settings_.search.slices);
     resume_ = Resume{.reference_frame = std::move(pending.resume->first),
                      .frames_left = kResumeFrames};
+    hold_ = current;  // no servo moves until the view is found
     spdlog::info("resuming: searching the whole frame for the view of slice {} held before the "
                  "restart; the servos hold until it is found",
                  slice_.load());

@@ -13,8 +13,8 @@ using Case = kapfix::v1::Command::CommandCase;
 
 // The order settings are stored in and applied back (the lens profiles come after these).
 constexpr std::array<Case, 6> kSettingsOrder{
-    kapfix::v1::Command::kSetGains, kapfix::v1::Command::kSetSearch,
-    kapfix::v1::Command::kSetCamera, kapfix::v1::Command::kSetVideo,
+    kapfix::v1::Command::kSetGains,          kapfix::v1::Command::kSetSearch,
+    kapfix::v1::Command::kSetCamera,         kapfix::v1::Command::kSetVideo,
     kapfix::v1::Command::kSetPhotoIntervalS, kapfix::v1::Command::kSetPhoto};
 
 }  // namespace
@@ -162,9 +162,7 @@ void ResumeRecorder::OnSliceReport(const kapfix::v1::SliceReport& report) {
   next_.OnSliceReport(report);
 }
 
-void ResumeRecorder::OnPssReport(const kapfix::v1::PssReport& report) {
-  next_.OnPssReport(report);
-}
+void ResumeRecorder::OnPssReport(const kapfix::v1::PssReport& report) { next_.OnPssReport(report); }
 
 void ResumeRecorder::OnCalibrationReport(const kapfix::v1::CalibrationReport& report,
                                          const std::optional<LensCalibration>& applied) {

@@ -31,9 +31,8 @@ void ResumeStore::Save(const ResumeRecord& record) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());
-  nlohmann::json json = {{"format", kFormat},
-                         {"mode", std::string(ToString(record.mode))},
-                         {"slice", record.slice}};
+  nlohmann::json json = {
+      {"format", kFormat}, {"mode", std::string(ToString(record.mode))}, {"slice", record.slice}};
   nlohmann::json settings = nlohmann::json::array();
   for (const kapfix::v1::Command& command : record.settings) {
     std::string text;
@@ -72,7 +71,8 @@ void ResumeStore::Save(const ResumeRecord& record) {
   // the image and the JSON).
   for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
     const std::string name = entry.path().filename().string();
-    if (IsReferenceName(name) && (record.reference_frame.empty() || name != written_reference_name_)) {
+    if (IsReferenceName(name) &&
+        (record.reference_frame.empty() || name != written_reference_name_)) {
       std::filesystem::remove(entry.path(), ec);
     }
   }
@@ -109,8 +109,8 @@ std::optional<ResumeRecord> ResumeStore::Load(std::string* error) {
       kapfix::v1::Command command;
       const auto status = google::protobuf::util::JsonStringToMessage(item.dump(), &command);
       if (!status.ok()) {
-        return fail("settings command " + item.dump() + " does not parse: " +
-                    std::string(status.message()));
+        return fail("settings command " + item.dump() +
+                    " does not parse: " + std::string(status.message()));
       }
       record.settings.push_back(std::move(command));
     }

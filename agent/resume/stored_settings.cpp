@@ -24,8 +24,8 @@ bool ApplyStoredSettings(const std::vector<kapfix::v1::Command>& settings, Agent
     if (!ApplySettingsCommand(command, &updated, &why)) {
       if (error) {
         const auto* field = command.GetDescriptor()->FindFieldByNumber(command.command_case());
-        *error = "stored setting refused: " + (field ? field->name() : std::string("?")) + ": " +
-                 why;
+        *error =
+            "stored setting refused: " + (field ? field->name() : std::string("?")) + ": " + why;
       }
       return false;
     }
