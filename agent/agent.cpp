@@ -131,7 +131,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   }
   // Issue 14: a new session id, and what the previous run left (its settings from here on).
   boot_id_ = DrawBootId();
-  resume_store_ = std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
+  resume_store_ =
+      std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
   std::optional<ResumeRecord> resumed;
   if (options_.resume && config_.resume) resumed = LoadResumeRecord(*resume_store_, &config_);
   std::optional<CurveServerKeys> curve;
@@ -302,8 +303,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       *resume_store_, *state_, resumed.value_or(ResumeRecord{}), config_.lens);
   // A resumed fixation first finds its stored view again; any other stored mode is taken up
   // as it was (follow) or as idle (a process cut short by the restart).
-  const bool resume_view = resumed && resumed->mode == AgentMode::kFixate &&
-                           !resumed->reference_frame.empty();
+  const bool resume_view =
+      resumed && resumed->mode == AgentMode::kFixate && !resumed->reference_frame.empty();
   if (resumed && !resume_view) {
     modes.start_mode = resumed->mode == AgentMode::kFollow ? AgentMode::kFollow : AgentMode::kIdle;
   }

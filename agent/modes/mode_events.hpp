@@ -1,11 +1,10 @@
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 
 #include "agent/modes/agent_mode.hpp"
-#include <opencv2/core.hpp>
-
 #include "common/control/controller.hpp"
 #include "common/control/lens_calibration.hpp"
 #include "kapfix/v1/calibration.pb.h"

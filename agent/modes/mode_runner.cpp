@@ -150,12 +150,13 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
   bool rebuild = false;
   if (pending.resume) {
     slice_ = std::clamp(pending.resume->second, 1, settings_.search.slices);
-    resume_ = Resume{.reference_frame = std::move(pending.resume->first),
-                     .frames_left = kResumeFrames};
+    resume_ =
+        Resume{.reference_frame = std::move(pending.resume->first), .frames_left = kResumeFrames};
     hold_ = current;  // no servo moves until the view is found
-    spdlog::info("resuming: searching the whole frame for the view of slice {} held before the "
-                 "restart; the servos hold until it is found",
-                 slice_.load());
+    spdlog::info(
+        "resuming: searching the whole frame for the view of slice {} held before the "
+        "restart; the servos hold until it is found",
+        slice_.load());
   }
   if (pending.settings) {
     rebuild = !SameLoop(settings_, *pending.settings);

@@ -187,8 +187,7 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
   }
   last_station_heard_us.store(request.received_us);
   kapfix::v1::Heartbeat echo;
-  kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence,
-                    options.boot_id);
+  kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence, options.boot_id);
   echo.set_echoed_send_time_us(heartbeat.header().send_time_us());
   echo.set_echoed_sequence(heartbeat.header().sequence());
   echo.set_echo_hold_us(echo.header().send_time_us() - request.received_us);
