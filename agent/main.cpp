@@ -87,8 +87,10 @@ int Main(int argc, char** argv) {
   app.add_option("--stream-address", stream_address,
                  "ZeroMQ address for the streams (overrides link.stream)");
   app.add_option("--photos", photos_dir, "folder for photos and recordings (overrides photos.dir)");
-  app.add_option("--state-dir", state_dir,
-                 "folder for the agent's calibrations per lens (overrides state_dir)");
+  app.add_option(
+      "--state-dir", state_dir,
+      "folder for the agent's calibrations per lens and what a restart resumes (overrides "
+      "state_dir)");
   app.add_option("--mode", start_mode, "mode on the first frame")
       ->check(CLI::IsMember({"idle", "fixate", "follow", "ssp", "pss", "calibrate"}));
   app.add_flag("--insecure", insecure,

@@ -201,10 +201,11 @@ cv::Rect ModeRunner::SlicePatchRect(cv::Size frame) const {
 
 void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
                        const ServoTargets& current) {
-  // SSP started while fixating keeps that fixation to go back to; anything else drops it.
+  // SSP started while fixating keeps that fixation to go back to (SSP restarted keeps it
+  // too); anything else drops it.
   if (mode == AgentMode::kSsp && mode_ == AgentMode::kFixate && !reference_frame_.empty()) {
     held_fixation_ = HeldFixation{reference_frame_, reference_index_, slice_.load()};
-  } else {
+  } else if (mode != AgentMode::kSsp || mode_ != AgentMode::kSsp) {
     held_fixation_.reset();
   }
   slice_run_.reset();

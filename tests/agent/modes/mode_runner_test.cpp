@@ -366,6 +366,36 @@ TEST(ModeRunnerTest, SspStartedWhileFixatingGoesBackToThePreviousSliceAndReferen
   EXPECT_NEAR(after.step.match.displacement.x, -(positions[i] - positions[0]), 0.5);
 }
 
+TEST(ModeRunnerTest, SspRestartedWhileRunningStillGoesBackToTheFixationBeforeIt) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(14, 7);
+  Feed(runner, frames[0]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});
+  Feed(runner, frames[1]);
+  Feed(runner, frames[2]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});  // the operator again
+  std::size_t i = 3;
+  while (events.finished_slice_reports() == 0 && i < frames.size()) Feed(runner, frames[i++]);
+  ASSERT_EQ(events.finished_slice_reports(), 1);
+  EXPECT_EQ(runner.mode(), AgentMode::kFixate);
+  EXPECT_EQ(runner.slice(), (kSlices + 1) / 2);
+}
+
+TEST(ModeRunnerTest, SspStartedWhileIdleStillEndsIdle) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(12, 7);
+  Feed(runner, frames[0]);
+  runner.RequestMode(AgentMode::kIdle);
+  Feed(runner, frames[1]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});
+  std::size_t i = 2;
+  while (events.finished_slice_reports() == 0 && i < frames.size()) Feed(runner, frames[i++]);
+  ASSERT_EQ(events.finished_slice_reports(), 1);
+  EXPECT_EQ(runner.mode(), AgentMode::kIdle);
+}
+
 TEST(ModeRunnerTest, FixateReportsEachNewReference) {
   RecordingModeEvents events;
   ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
