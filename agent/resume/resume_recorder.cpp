@@ -19,7 +19,7 @@ constexpr std::array<Case, 6> kSettingsOrder{
 
 }  // namespace
 
-ResumeRecorder::ResumeRecorder(ResumeStore& store, ModeEvents& next, ResumeRecord start,
+ResumeRecorder::ResumeRecorder(ResumeStore& store, ModeEvents& next, const ResumeRecord& start,
                                std::string active_lens)
     : store_(store), next_(next), active_lens_(std::move(active_lens)) {
   for (const kapfix::v1::Command& command : start.settings) AddSettingLocked(command);

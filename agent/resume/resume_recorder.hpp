@@ -24,7 +24,8 @@ class ResumeRecorder : public ModeEvents {
   // `next`: where the events go on to. `start`: what this run resumed from (empty on a fresh
   // start), kept until something replaces it. `active_lens`: the lens profile in use, which
   // a set_lens without a name is about.
-  ResumeRecorder(ResumeStore& store, ModeEvents& next, ResumeRecord start, std::string active_lens);
+  ResumeRecorder(ResumeStore& store, ModeEvents& next, const ResumeRecord& start,
+                 std::string active_lens);
   ~ResumeRecorder() override;  // writes what is pending, then stops
   ResumeRecorder(const ResumeRecorder&) = delete;
   ResumeRecorder& operator=(const ResumeRecorder&) = delete;
