@@ -28,8 +28,9 @@ std::filesystem::path ScratchDir() {
 
 Outcome RunAgent(const std::string& args, const std::filesystem::path& scratch) {
   const std::filesystem::path err_file = scratch / "stderr.txt";
-  // Private link addresses and photo folder, at full speed: tests run side by side.
-  const std::string link = " --max-speed --command-address ipc://" +
+  // Private link addresses and photo folder, at full speed: tests run side by side. No resume:
+  // each run from its flags, not from what an earlier run left in ./kapfix-state.
+  const std::string link = " --max-speed --no-resume --command-address ipc://" +
                            (scratch / "commands").string() + " --stream-address ipc://" +
                            (scratch / "streams").string() + " --photos " +
                            (scratch / "photos").string();

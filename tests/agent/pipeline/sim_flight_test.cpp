@@ -35,6 +35,7 @@ constexpr AgentOptions Fast(std::uint64_t frames) {
 FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
   AgentOptions options = Fast(frames);
   options.keep_telemetry = true;
+  options.resume = false;  // each flight from its configuration, not from the previous one's
   Agent agent(config, options);
   EXPECT_TRUE(agent.simulated());
   const PipelineStats stats = agent.Run();
