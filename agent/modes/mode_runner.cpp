@@ -382,7 +382,16 @@ FrameOutcome ModeRunner::ResumeSearch(const CapturedFrame& frame, const ServoTar
     reference_index_ = frame.index;
     resume_.reset();
     mode_ = AgentMode::kFixate;
-    Rebuild();
+    try {
+      Rebuild();
+    } catch (const std::exception& e) {
+      spdlog::error("not resumed: {}; the agent is idle", e.what());
+      reference_frame_.release();
+      mode_ = AgentMode::kIdle;
+      SetMode(AgentMode::kIdle);
+      events_.OnResumeEnded(false);
+      return outcome;
+    }
     loop_->SeekFrom(match.shift);
     spdlog::info(
         "resumed: the view of slice {} held before the restart found at ({}, {}) px, confidence "
