@@ -25,6 +25,7 @@ AgentConfig KiteConfig(ControllerKind controller) {
   config.link.command_address = "ipc://" + base + ".cmd";
   config.link.stream_address = "ipc://" + base + ".stream";
   config.photos.dir = base + "_photos";
+  config.state_dir = base + "_state";  // not ./kapfix-state: what it stores stays private
   return config;
 }
 
