@@ -12,6 +12,8 @@
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/sim_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
+#include "agent/resume/boot_id.hpp"
+#include "agent/resume/stored_settings.hpp"
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/sim_servo_driver.hpp"
@@ -134,6 +136,12 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   if (!CheckLinkExposure(config_.link, options_.insecure, &error)) {
     throw std::runtime_error(error);
   }
+  // Issue 14: a new session id, and what the previous run left (its settings from here on).
+  boot_id_ = DrawBootId();
+  resume_store_ =
+      std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
+  std::optional<ResumeRecord> resumed;
+  if (options_.resume && config_.resume) resumed = LoadResumeRecord(*resume_store_, &config_);
   std::optional<CurveServerKeys> curve;
   if (!config_.link.curve_secret_key_file.empty()) {
     // Fresh install (the package's postinst makes the agent's keys and an empty list): no
@@ -257,6 +265,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   publisher_options.max_connections = budget;
   publisher_options.bind_endpoint = config_.link.stream_address;
   publisher_options.agent_id = config_.agent_id;
+  publisher_options.boot_id = boot_id_;
   publisher_options.heartbeat_interval = std::chrono::milliseconds(config_.link.heartbeat_ms);
   publisher_options.curve = curve;
   publisher_ = std::make_unique<StreamPublisher>(publisher_options);
@@ -302,7 +311,18 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   modes.actuation_delay_frames = pipeline.actuation_delay_frames;
   modes.frame_period_s = 1.0 / fps;
   modes.recordings_dir = (std::filesystem::path(config_.photos.dir) / "free-swing").string();
-  modes_ = std::make_unique<ModeRunner>(config_, modes, *state_);
+  resume_recorder_ = std::make_unique<ResumeRecorder>(
+      *resume_store_, *state_, resumed.value_or(ResumeRecord{}), config_.lens);
+  // A resumed fixation first finds its stored view again; any other stored mode is taken up
+  // as it was (follow) or as idle (a process cut short by the restart).
+  const bool resume_view =
+      resumed && resumed->mode == AgentMode::kFixate && !resumed->reference_frame.empty();
+  if (resumed && !resume_view) {
+    modes.start_mode = resumed->mode == AgentMode::kFollow ? AgentMode::kFollow : AgentMode::kIdle;
+  }
+  modes_ = std::make_unique<ModeRunner>(config_, modes, *resume_recorder_);
+  if (resume_view) modes_->RequestResume(resumed->reference_frame, resumed->slice);
+  if (resumed && !resume_view) state_->OnResumeEnded(true);
 
   std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
   if (options_.keep_telemetry) observers.push_back(&telemetry_);
@@ -339,10 +359,12 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   CommandServerOptions server_options;
   server_options.bind_endpoint = config_.link.command_address;
   server_options.agent_id = config_.agent_id;
+  server_options.boot_id = boot_id_;
   server_options.curve = curve;
   server_options.max_connections = budget;
   server_options.replay->state_file = std::filesystem::path(config_.state_dir) / "replay_horizon";
-  server_ = std::make_unique<CommandServer>(*executor_, server_options);
+  recording_control_ = std::make_unique<RecordingControl>(*executor_, *resume_recorder_);
+  server_ = std::make_unique<CommandServer>(*recording_control_, server_options);
   stream_endpoint_ = publisher_->Start();
   command_endpoint_ = server_->Start();
   notifier_->Ready("commands on " + command_endpoint_ + "; " + StatusLine(pipeline_->health()));

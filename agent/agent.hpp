@@ -19,6 +19,9 @@
 #include "agent/photos/photo_taker.hpp"
 #include "agent/pipeline/pipeline.hpp"
 #include "agent/pipeline/telemetry_recorder.hpp"
+#include "agent/resume/recording_control.hpp"
+#include "agent/resume/resume_recorder.hpp"
+#include "agent/resume/resume_store.hpp"
 #include "agent/server/command_server.hpp"
 #include "agent/server/stream_publisher.hpp"
 #include "agent/service/systemd_notifier.hpp"
@@ -46,6 +49,8 @@ struct AgentOptions {
   kapfix::v1::PhotoCamera photo_camera = kapfix::v1::PHOTO_CAMERA_UNSPECIFIED;
   // Delete each still-camera photo on the camera once it is stored on the agent.
   bool still_camera_delete = false;
+  // Come back as the previous run left (config key `resume` too; --no-resume): issue 14.
+  bool resume = true;
 };
 
 // kapfix-agent's built-in configuration (no --config): AgentConfig's defaults — everything
@@ -104,6 +109,11 @@ class Agent {
   StreamPublisher::Counters link_counters() const { return publisher_->counters(); }
   std::uint64_t video_frames_sent() const { return video_->sent(); }
   PhotoTaker& photos() { return *photos_; }
+  // Header.boot_id of everything this agent sends: drawn once per start (issue 14).
+  std::uint64_t boot_id() const { return boot_id_; }
+  // Waits until the resume record holds every change so far (it is written on change, on a
+  // thread of its own, and at the end).
+  void FlushResumeRecord() { resume_recorder_->Flush(); }
 
  private:
   AgentConfig config_;
@@ -125,12 +135,16 @@ class Agent {
   std::unique_ptr<CalibrationStore> calibrations_;
   std::unique_ptr<StateKeeper> state_;
   std::unique_ptr<StateRepublisher> state_republisher_;
+  std::unique_ptr<ResumeStore> resume_store_;
+  std::unique_ptr<ResumeRecorder> resume_recorder_;  // in front of state_, behind modes_
   std::unique_ptr<ModeRunner> modes_;
   std::unique_ptr<Pipeline> pipeline_;
   std::unique_ptr<CommandExecutor> executor_;
+  std::unique_ptr<RecordingControl> recording_control_;  // in front of executor_
   std::unique_ptr<CommandServer> server_;
   std::string command_endpoint_;
   std::string stream_endpoint_;
+  std::uint64_t boot_id_ = 0;
 };
 
 }  // namespace kapfix::agent

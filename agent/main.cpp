@@ -56,6 +56,7 @@ int Main(int argc, char** argv) {
   std::string state_dir;
   std::string start_mode = "fixate";
   bool insecure = false;
+  bool no_resume = false;
   bool max_speed = false;
   // The simulated world's disturbances (issue 9): a preset, then single flags over it.
   std::string world_preset;
@@ -90,12 +91,17 @@ int Main(int argc, char** argv) {
   app.add_option("--stream-address", stream_address,
                  "ZeroMQ address for the streams (overrides link.stream)");
   app.add_option("--photos", photos_dir, "folder for photos and recordings (overrides photos.dir)");
-  app.add_option("--state-dir", state_dir,
-                 "folder for the agent's calibrations per lens (overrides state_dir)");
+  app.add_option(
+      "--state-dir", state_dir,
+      "folder for the agent's calibrations per lens and what a restart resumes (overrides "
+      "state_dir)");
   app.add_option("--mode", start_mode, "mode on the first frame")
       ->check(CLI::IsMember({"idle", "fixate", "follow", "ssp", "pss", "calibrate"}));
   app.add_flag("--insecure", insecure,
                "let the link listen beyond this machine without CurveZMQ keys (not for a field)");
+  app.add_flag("--no-resume", no_resume,
+               "start from the configuration, not from the settings, mode and fixated view the "
+               "previous run stored in the state folder (also config key resume: false)");
   app.add_flag("--max-speed", max_speed,
                "simulation: frames as fast as the machine allows, not at the camera's rate");
   // Field deployment (issue 10): one device from the command line, and checks without flying.
@@ -225,6 +231,7 @@ int Main(int argc, char** argv) {
     options.photo_camera = photo_camera == "gphoto2" ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
                                                      : kapfix::v1::PHOTO_CAMERA_AGENT;
   }
+  options.resume = !no_resume;
   if (frames) options.frames = *frames;
   if (duration_s) {
     options.frames = static_cast<std::uint64_t>(std::llround(*duration_s * config.camera.fps));

@@ -60,6 +60,7 @@ kapfix::v1::AgentState StateKeeper::StateLocked() const {
   state.set_version(version_);
   *state.mutable_camera_health() = ToProto(devices_.camera);
   *state.mutable_servo_health() = ToProto(devices_.servos);
+  state.set_resumed(resumed_);
   return state;
 }
 
@@ -176,6 +177,15 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
     }
   }
   sink_.Publish(report);
+}
+
+void StateKeeper::OnResumeEnded(bool resumed) {
+  {
+    std::lock_guard lock(mutex_);
+    resumed_ = resumed;
+    ChangedLocked();
+  }
+  PublishState();
 }
 
 void StateKeeper::OnFreeSwingRecorded(const std::string& path, const std::string& error) {

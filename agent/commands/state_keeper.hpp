@@ -58,6 +58,7 @@ class StateKeeper : public ModeEvents {
   void OnCalibrationReport(const kapfix::v1::CalibrationReport& report,
                            const std::optional<LensCalibration>& applied) override;
   void OnFreeSwingRecorded(const std::string& path, const std::string& error) override;
+  void OnResumeEnded(bool resumed) override;  // AgentState.resumed (issue 14)
 
  private:
   kapfix::v1::AgentState StateLocked() const;
@@ -76,6 +77,7 @@ class StateKeeper : public ModeEvents {
   std::optional<kapfix::v1::PssReport> last_pss_report_;
   std::optional<kapfix::v1::CalibrationReport> calibration_;
   DevicesHealth devices_;
+  bool resumed_ = false;         // this run came back fixating the view it stored before a restart
   std::uint64_t version_ = 1;    // [count] of the state as it is now
   bool publishing_ = false;      // a thread is in PublishState's loop
   bool publish_wanted_ = false;  // a state was asked for since that thread's last snapshot

@@ -189,6 +189,7 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
   });
   r.Read("watchdog_ms", &c->watchdog_ms);
   r.Read("state_dir", &c->state_dir);
+  r.Read("resume", &c->resume);
   r.Finish();
 }
 

@@ -34,6 +34,9 @@ struct AgentConfig {
   VideoConfig video;
   // The agent's own files besides photos: calibrations per lens profile (calibration/).
   std::string state_dir = "/var/lib/kapfix";
+  // On start, come back with the settings, mode, slice and fixated view stored in
+  // state_dir/resume/ by the previous run (issue 14); false = start from this configuration.
+  bool resume = true;
   // [ms] the servos are parked when the control loop has not run for this long.
   int watchdog_ms = 500;
 

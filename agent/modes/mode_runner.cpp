@@ -13,6 +13,8 @@
 #include "common/control/controller_factory.hpp"
 #include "common/image/color_channel.hpp"
 #include "common/io/atomic_file.hpp"
+#include "common/matching/reference_patch.hpp"
+#include "common/sampling/sample_set.hpp"
 #include "common/selection/displacement_graph.hpp"
 #include "common/selection/slice_geometry.hpp"
 
@@ -46,6 +48,12 @@ constexpr std::uint64_t kProgressEveryFrames = 5;
 constexpr double kCalibrationSpanPx = 30.0;
 constexpr int kCalibrationStepsPerSide = 5;
 constexpr std::array<int, 3> kPatchSizeCandidates{50, 100, 150};  // [px] the thesis's
+// [frames] a resuming agent searches for its stored view this long (about a second, so a
+// swing that carried it out of the frame brings it back) before it gives up and stays idle.
+constexpr int kResumeFrames = 30;
+// The whole-frame search of a resume: the hierarchical strategy, whatever the fixation
+// uses, so a frame-wide window costs about what the exhaustive one does on ±range.
+constexpr const char* kResumeStrategy = "pyr";
 
 ControllerGains MakeGains(const ControllerConfig& c) {
   ControllerGains g;
@@ -88,6 +96,12 @@ void ModeRunner::RequestSettings(const AgentConfig& settings) {
 void ModeRunner::RequestSlice(int slice) {
   std::lock_guard lock(pending_mutex_);
   pending_.slice = slice;
+}
+
+void ModeRunner::RequestResume(cv::Mat reference_frame_bgr, int slice) {
+  std::lock_guard lock(pending_mutex_);
+  pending_.resume = std::make_pair(std::move(reference_frame_bgr), slice);
+  pending_.mode.reset();  // the resume decides: fixate when the view is found, else idle
 }
 
 FixationOptions ModeRunner::MakeFixationOptions(AgentMode mode) const {
@@ -134,11 +148,22 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     std::swap(pending, pending_);
   }
   bool rebuild = false;
+  if (pending.resume) {
+    slice_ = std::clamp(pending.resume->second, 1, settings_.search.slices);
+    resume_ =
+        Resume{.reference_frame = std::move(pending.resume->first), .frames_left = kResumeFrames};
+    hold_ = current;  // no servo moves until the view is found
+    spdlog::info(
+        "resuming: searching the whole frame for the view of slice {} held before the "
+        "restart; the servos hold until it is found",
+        slice_.load());
+  }
   if (pending.settings) {
     rebuild = !SameLoop(settings_, *pending.settings);
     settings_ = *pending.settings;
     slice_ = std::clamp(slice_.load(), 1, settings_.search.slices);
   }
+  if (pending.slice || pending.mode) resume_.reset();  // the operator decides instead
   if (pending.slice) {
     // Picking a slice means fixating on it (the operator confirms SSP's choice or overrides
     // it): a fixation in progress keeps its reference frame and moves to the new patch; any
@@ -176,6 +201,13 @@ cv::Rect ModeRunner::SlicePatchRect(cv::Size frame) const {
 
 void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
                        const ServoTargets& current) {
+  // SSP started while fixating keeps that fixation to go back to (SSP restarted keeps it
+  // too); anything else drops it.
+  if (mode == AgentMode::kSsp && mode_ == AgentMode::kFixate && !reference_frame_.empty()) {
+    held_fixation_ = HeldFixation{reference_frame_, reference_index_, slice_.load()};
+  } else if (mode != AgentMode::kSsp || mode_ != AgentMode::kSsp) {
+    held_fixation_.reset();
+  }
   slice_run_.reset();
   pss_run_.reset();
   calibration_.reset();
@@ -198,6 +230,7 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
       reference_frame_ = frame.image.clone();
       reference_index_ = frame.index;
       Rebuild();
+      if (mode == AgentMode::kFixate) events_.OnReferenceTaken(reference_frame_, current);
       break;
     case AgentMode::kSsp: {
       reference_frame_.release();
@@ -274,6 +307,7 @@ FrameOutcome ModeRunner::Hold(AgentMode mode) const {
 FrameOutcome ModeRunner::Process(const CapturedFrame& frame, const ServoTargets& current,
                                  double dt_s) {
   ApplyPending(frame, current);
+  if (resume_) return ResumeSearch(frame, current, dt_s);
   switch (mode_.load()) {
     case AgentMode::kIdle:
       return Hold(AgentMode::kIdle);
@@ -317,6 +351,72 @@ FrameOutcome ModeRunner::Fixate(const CapturedFrame& frame, const ServoTargets& 
   return outcome;
 }
 
+FrameOutcome ModeRunner::ResumeSearch(const CapturedFrame& frame, const ServoTargets& current,
+                                      double dt_s) {
+  FrameOutcome outcome = Hold(AgentMode::kIdle);
+  outcome.step.lock_lost = true;
+  std::string error;
+  const std::unique_ptr<SearchStrategy> strategy = MakeSearchStrategy(kResumeStrategy, &error);
+  const cv::Mat stored = ExtractChannel(resume_->reference_frame, settings_.search.channel);
+  const cv::Mat plane = ExtractChannel(frame.image, settings_.search.channel);
+  const FixationOptions fixation = MakeFixationOptions(AgentMode::kFixate);
+  if (strategy && stored.size() == plane.size() && stored.type() == plane.type()) {
+    const cv::Rect patch = SlicePatchRect(stored.size());
+    const ReferencePatch reference(stored, SampleSet({patch}, settings_.search.sampling));
+    SearchOptions wide = MakeSearchOptions(settings_.search);
+    wide.axis = SearchAxis::kBoth;  // wherever the restart left the view
+    wide.range = std::max(plane.cols, plane.rows);
+    wide.origin = {0, 0};
+    outcome.step.match = strategy->Search(reference, plane, wide);
+  } else {
+    resume_->frames_left = 0;  // another camera or frame size: the view cannot be compared
+    if (error.empty()) {
+      error = fmt::format("the stored reference is {}x{} px, the camera's frames {}x{} px",
+                          stored.cols, stored.rows, plane.cols, plane.rows);
+    }
+  }
+  const SearchResult& match = outcome.step.match;
+  if (match.found && match.confidence >= fixation.lock_lost_confidence) {
+    // Found: the stored view becomes the reference and the loop closes from where it is.
+    reference_frame_ = resume_->reference_frame;
+    reference_index_ = frame.index;
+    resume_.reset();
+    mode_ = AgentMode::kFixate;
+    try {
+      Rebuild();
+    } catch (const std::exception& e) {
+      spdlog::error("not resumed: {}; the agent is idle", e.what());
+      reference_frame_.release();
+      mode_ = AgentMode::kIdle;
+      SetMode(AgentMode::kIdle);
+      events_.OnResumeEnded(false);
+      return outcome;
+    }
+    loop_->SeekFrom(match.shift);
+    spdlog::info(
+        "resumed: the view of slice {} held before the restart found at ({}, {}) px, confidence "
+        "{:.2f}; fixating it",
+        slice_.load(), match.shift.x, match.shift.y, match.confidence);
+    SetMode(AgentMode::kFixate);
+    events_.OnResumeEnded(true);
+    return Fixate(frame, current, dt_s);
+  }
+  if (match.found) resume_->best_confidence = std::max(resume_->best_confidence, match.confidence);
+  if (--resume_->frames_left > 0) return outcome;
+  if (error.empty()) {
+    error = fmt::format("best confidence {:.2f} in {} frames, below {:.2f}",
+                        resume_->best_confidence, kResumeFrames, fixation.lock_lost_confidence);
+  }
+  spdlog::warn(
+      "not resumed: the view of slice {} held before the restart was not found ({}); the agent "
+      "stays idle: run SSP or select a slice to fixate",
+      slice_.load(), error);
+  resume_.reset();
+  SetMode(AgentMode::kIdle);
+  events_.OnResumeEnded(false);
+  return outcome;
+}
+
 SwingProgress ModeRunner::ProgressOf(int frames_used, bool done) const {
   SwingProgress progress;
   progress.done = frames_used;
@@ -342,11 +442,27 @@ FrameOutcome ModeRunner::SelectSlice(const cv::Mat& plane, std::uint64_t index) 
     if (done) {
       // The recommended slice becomes the one in use; the operator confirms it (or picks
       // another) and starts fixating.
-      slice_ = selection.best_slice;
       slice_run_.reset();
-      spdlog::info("SSP finished after {} frames: slice {} recommended", used,
-                   selection.best_slice);
-      SetMode(AgentMode::kIdle);
+      if (held_fixation_) {
+        // The view fixated before SSP is held again until the operator confirms a slice
+        // (select_slice): SSP alone never drops the lock.
+        reference_frame_ = held_fixation_->reference_frame;
+        reference_index_ = held_fixation_->reference_index;
+        slice_ = held_fixation_->slice;
+        held_fixation_.reset();
+        mode_ = AgentMode::kFixate;
+        Rebuild();
+        spdlog::info(
+            "SSP finished after {} frames: slice {} recommended; fixating slice {} again until "
+            "a slice is confirmed",
+            used, selection.best_slice, slice_.load());
+        SetMode(AgentMode::kFixate);
+      } else {
+        slice_ = selection.best_slice;
+        spdlog::info("SSP finished after {} frames: slice {} recommended", used,
+                     selection.best_slice);
+        SetMode(AgentMode::kIdle);
+      }
     }
   }
   return Hold(AgentMode::kSsp);

@@ -50,6 +50,13 @@ class ModeRunner : public FrameProcessor {
   // [1..slice_count] fixate on this slice: the current fixation moves to it, any other mode
   // (SSP finished, idle) switches to fixate.
   void RequestSlice(int slice);
+  // Any thread, before the first frame: come back fixating the view an earlier run held
+  // (issue 14), instead of the start mode. `reference_frame_bgr` is the frame its reference
+  // was taken from, `slice` [1..slice_count] its slice. The servos hold while the stored patch
+  // is searched over the whole frame (ResumeSearch); found with enough confidence, the loop
+  // closes from where it was found (fixate); not found within kResumeFrames, the agent stays
+  // idle and says so. Either way events.OnResumeEnded tells.
+  void RequestResume(cv::Mat reference_frame_bgr, int slice);
 
   AgentMode mode() const { return mode_.load(); }
   int slice() const { return slice_.load(); }
@@ -59,6 +66,20 @@ class ModeRunner : public FrameProcessor {
     std::optional<std::pair<AgentMode, SwingDeadline>> mode;
     std::optional<AgentConfig> settings;
     std::optional<int> slice;
+    std::optional<std::pair<cv::Mat, int>> resume;  // reference frame, slice
+  };
+  // A resume under way: the stored view being searched for, the servos holding.
+  struct Resume {
+    cv::Mat reference_frame;  // BGR, as stored
+    int frames_left = 0;      // [frames] searched before giving up
+    double best_confidence = 0;
+  };
+  // The fixation SSP interrupted: after SSP the agent goes back to it until the operator
+  // confirms a slice (issue 14).
+  struct HeldFixation {
+    cv::Mat reference_frame;
+    std::uint64_t reference_index = 0;
+    int slice = 0;
   };
 
   void ApplyPending(const CapturedFrame& frame, const ServoTargets& current);
@@ -69,6 +90,7 @@ class ModeRunner : public FrameProcessor {
   bool SwingDeadlineReached(std::uint64_t index) const;
   SwingProgress ProgressOf(int frames_used, bool done) const;
   FrameOutcome Fixate(const CapturedFrame& frame, const ServoTargets& current, double dt_s);
+  FrameOutcome ResumeSearch(const CapturedFrame& frame, const ServoTargets& current, double dt_s);
   FrameOutcome SelectSlice(const cv::Mat& plane, std::uint64_t index);
   FrameOutcome SelectPatchSize(const cv::Mat& plane, std::uint64_t index);
   FrameOutcome Calibrate(const cv::Mat& plane);
@@ -106,6 +128,8 @@ class ModeRunner : public FrameProcessor {
   std::vector<std::pair<std::int64_t, double>> recording_;  // [µs, px] free swing samples
   cv::Mat previous_plane_;
   std::optional<SampleSet> recording_samples_;
+  std::optional<Resume> resume_;
+  std::optional<HeldFixation> held_fixation_;
 };
 
 }  // namespace kapfix::agent

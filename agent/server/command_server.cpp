@@ -188,7 +188,7 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
   }
   last_station_heard_us.store(request.received_us);
   kapfix::v1::Heartbeat echo;
-  kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence);
+  kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence, options.boot_id);
   echo.set_echoed_send_time_us(heartbeat.header().send_time_us());
   echo.set_echoed_sequence(heartbeat.header().sequence());
   echo.set_echo_hold_us(echo.header().send_time_us() - request.received_us);
@@ -210,7 +210,7 @@ void CommandServer::Impl::SendReply(zmq::socket_t& socket, const Request& reques
   }
   reply.set_command_sequence(command_sequence);
   reply.clear_header();
-  kapfix::v1::Stamp(reply.mutable_header(), options.agent_id, ++reply_sequence);
+  kapfix::v1::Stamp(reply.mutable_header(), options.agent_id, ++reply_sequence, options.boot_id);
   (reply.ok() ? commands_ok : commands_refused).fetch_add(1);
   const std::optional<std::string_view> topic =
       envelope.topic ? std::optional<std::string_view>(kReplyTopic) : std::nullopt;

@@ -27,6 +27,7 @@ struct CommandServerOptions {
   // ZeroMQ endpoint to bind; "tcp://127.0.0.1:*" binds an ephemeral port (see Start()).
   std::string bind_endpoint = "tcp://*:5555";
   std::string agent_id = "kapfix-agent";  // header.agent_id of every reply
+  std::uint64_t boot_id = 0;              // header.boot_id of every reply (DrawBootId)
   // [bytes] ZMQ_MAXMSGSIZE: libzmq drops the connection of a peer that sends a larger frame,
   // without delivering it, so no reply can name the problem. Commands up to this size are
   // read, and those above kMaxCommandBytes refused with ERROR_CODE_OVERSIZED; the margin

@@ -194,7 +194,7 @@ void StreamPublisher::Impl::Loop(zmq::socket_t& socket) {
 bool StreamPublisher::Impl::Send(zmq::socket_t& socket, const std::string& topic,
                                  Message& message) {
   const std::uint64_t sequence = sequences[topic] + 1;
-  kapfix::v1::Stamp(MutableHeader(message), options.agent_id, sequence);
+  kapfix::v1::Stamp(MutableHeader(message), options.agent_id, sequence, options.boot_id);
   const std::string bytes = message.SerializeAsString();
   if (!socket.send(zmq::buffer(topic), zmq::send_flags::sndmore | zmq::send_flags::dontwait)) {
     return false;

@@ -40,6 +40,7 @@ struct StreamPublisherOptions {
   // ZeroMQ endpoint to bind; "tcp://127.0.0.1:*" binds an ephemeral port (see Start()).
   std::string bind_endpoint = "tcp://*:5556";
   std::string agent_id = "kapfix-agent";
+  std::uint64_t boot_id = 0;                         // header.boot_id of every message (DrawBootId)
   std::size_t queue_messages = 4096;                 // [count] non-video messages waiting, at most
   std::size_t queue_bytes = std::size_t{64} << 20U;  // [bytes] and their serialized size
   std::chrono::milliseconds heartbeat_interval{1000};

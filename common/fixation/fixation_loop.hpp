@@ -72,6 +72,10 @@ class FixationLoop {
   // the controller and the lock. Throws std::invalid_argument when the patch does not fit.
   void SetReference(const cv::Mat& frame_bgr);
   bool has_reference() const { return reference_.has_value(); }
+  // Centres the next search on `shift` [px] instead of search.origin: the reference's view was
+  // found there by a wider search (an agent resuming after a restart, issue 14). With
+  // track_origin the searches then follow the view from there.
+  void SeekFrom(cv::Point shift) { origin_ = shift; }
   cv::Rect patch() const { return patch_; }  // [px] the patch in the reference frame
 
   struct Step {

@@ -199,10 +199,12 @@ std::int64_t NowMicros() {
       .count();
 }
 
-void Stamp(Header* header, const std::string& agent_id, std::uint64_t sequence) {
+void Stamp(Header* header, const std::string& agent_id, std::uint64_t sequence,
+           std::uint64_t boot_id) {
   const std::int64_t now = NowMicros();
   header->set_protocol_version(kProtocolVersion);
   header->set_agent_id(agent_id);
+  header->set_boot_id(boot_id);
   header->set_sequence(sequence);
   header->set_send_time_us(now);
   if (header->capture_time_us() == 0) header->set_capture_time_us(now);

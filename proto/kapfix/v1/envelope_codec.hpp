@@ -72,8 +72,10 @@ std::uint64_t LibprotobufLinesDropped();
 std::int64_t NowMicros();
 
 // Fills a header for sending: protocol version, agent id, sequence, send time = now, and
-// capture time = now unless it is already set (a frame's capture time is kept).
-void Stamp(Header* header, const std::string& agent_id, std::uint64_t sequence);
+// capture time = now unless it is already set (a frame's capture time is kept), and the
+// sender's boot id (0 = unset: a station).
+void Stamp(Header* header, const std::string& agent_id, std::uint64_t sequence,
+           std::uint64_t boot_id = 0);
 
 // Refuses replayed and stale messages: per sender, every accepted sequence number must be
 // greater than the last one accepted from that sender. Sequence 0 (unset) is refused.

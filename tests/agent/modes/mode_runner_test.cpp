@@ -46,6 +46,12 @@ class RecordingModeEvents : public ModeEvents {
   void OnFreeSwingRecorded(const std::string& path, const std::string& error) override {
     recordings.emplace_back(path, error);
   }
+  std::vector<bool> resumes;  // OnResumeEnded's
+  int references_taken = 0;
+  void OnResumeEnded(bool resumed) override { resumes.push_back(resumed); }
+  void OnReferenceTaken(const cv::Mat& /*frame_bgr*/, const ServoTargets& /*servos*/) override {
+    ++references_taken;
+  }
 
   int finished_slice_reports() const {
     return static_cast<int>(std::count_if(slice_reports.begin(), slice_reports.end(),
@@ -267,6 +273,139 @@ TEST(ModeRunnerTest, IdleHoldsTheServosWhereTheyAre) {
   EXPECT_DOUBLE_EQ(outcome.step.targets.pan_deg, 3.0);
   EXPECT_DOUBLE_EQ(outcome.step.targets.tilt_deg, -1.0);
   EXPECT_FALSE(outcome.reference_frame.has_value());
+}
+
+// Issue 14: an agent restarted while fixating comes back to the view it held.
+
+// [px] a window of a real aerial photo, at (x, y) of it.
+CapturedFrame AerialView(int x, int y, std::uint64_t index) {
+  static const cv::Mat photo = kapfix::testing::LoadOpenCvPhoto("aero3.jpg");
+  return CapturedFrame{photo(cv::Rect(cv::Point(x, y), kFrame)).clone(),
+                       static_cast<std::int64_t>(index) * kFramePeriodUs, index};
+}
+
+// A frame with nothing to find (a lens cap, a view the restart lost).
+CapturedFrame BlankView(std::uint64_t index) {
+  return CapturedFrame{cv::Mat(kFrame, CV_8UC3, cv::Scalar::all(128)),
+                       static_cast<std::int64_t>(index) * kFramePeriodUs, index};
+}
+
+TEST(ModeRunnerTest, ResumeHoldsTheServosUntilTheStoredViewIsFoundThenFixatesIt) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const CapturedFrame stored = AerialView(300, 200, 3);
+  runner.RequestResume(stored.image, 2);
+  const ServoTargets servos{3.0, -1.0};
+  // The view is not in these frames: the servos hold, nothing is fixated yet.
+  for (std::uint64_t i = 0; i < 3; ++i) {
+    const FrameOutcome outcome = runner.Process(BlankView(i), servos, 0.033);
+    EXPECT_EQ(outcome.mode, AgentMode::kIdle) << i;
+    EXPECT_DOUBLE_EQ(outcome.step.targets.pan_deg, servos.pan_deg) << i;
+    EXPECT_DOUBLE_EQ(outcome.step.targets.tilt_deg, servos.tilt_deg) << i;
+  }
+  EXPECT_TRUE(events.resumes.empty());
+  // The view is back, 45 px right and 30 px down of where it was: beyond the fixation's
+  // search range (24 px), inside the frame.
+  const FrameOutcome found = runner.Process(AerialView(255, 170, 3), servos, 0.033);
+  EXPECT_EQ(found.mode, AgentMode::kFixate);
+  EXPECT_EQ(found.slice, 2);
+  EXPECT_EQ(found.patch, SlicePatch(kFrame, kSlices, 2, kPatch));
+  ASSERT_TRUE(found.step.match.found);
+  EXPECT_NEAR(found.step.match.displacement.x, 45, 1.0);
+  EXPECT_NEAR(found.step.match.displacement.y, 30, 1.0);
+  EXPECT_EQ(events.resumes, std::vector<bool>{true});
+  EXPECT_EQ(runner.mode(), AgentMode::kFixate);
+  // The loop goes on from there: the next frame, a little further, is still the stored view.
+  const FrameOutcome next = runner.Process(AerialView(250, 170, 4), servos, 0.033);
+  ASSERT_TRUE(next.step.match.found);
+  EXPECT_NEAR(next.step.match.displacement.x, 50, 1.0);
+  EXPECT_NEAR(next.step.match.displacement.y, 30, 1.0);
+}
+
+TEST(ModeRunnerTest, ResumeThatCannotFindTheStoredViewStaysIdleAndSaysSo) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  runner.RequestResume(AerialView(300, 200, 3).image, 2);
+  const ServoTargets servos{3.0, -1.0};
+  std::uint64_t index = 0;
+  while (events.resumes.empty() && index < 1000) {
+    const FrameOutcome outcome = runner.Process(BlankView(index++), servos, 0.033);
+    EXPECT_EQ(outcome.mode, AgentMode::kIdle);
+    EXPECT_DOUBLE_EQ(outcome.step.targets.pan_deg, servos.pan_deg);
+    EXPECT_DOUBLE_EQ(outcome.step.targets.tilt_deg, servos.tilt_deg);
+  }
+  EXPECT_EQ(events.resumes, std::vector<bool>{false});
+  EXPECT_EQ(runner.mode(), AgentMode::kIdle);
+  // Idle for good: the start mode (fixate) is not taken up behind the operator's back.
+  EXPECT_EQ(runner.Process(AerialView(300, 200, index), servos, 0.033).mode, AgentMode::kIdle);
+}
+
+TEST(ModeRunnerTest, SspStartedWhileFixatingGoesBackToThePreviousSliceAndReference) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(12, 7);
+  Feed(runner, frames[0]);
+  runner.RequestSlice(2);
+  Feed(runner, frames[1]);
+  ASSERT_EQ(runner.mode(), AgentMode::kFixate);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});
+  std::size_t i = 2;
+  while (events.finished_slice_reports() == 0 && i < frames.size()) Feed(runner, frames[i++]);
+  ASSERT_EQ(events.finished_slice_reports(), 1);
+  EXPECT_EQ(runner.mode(), AgentMode::kFixate);
+  EXPECT_EQ(runner.slice(), 2);
+  ASSERT_LT(i, frames.size());
+  const FrameOutcome after = Feed(runner, frames[i]);
+  EXPECT_EQ(after.mode, AgentMode::kFixate);
+  EXPECT_EQ(after.slice, 2);
+  ASSERT_TRUE(after.reference_frame.has_value());
+  EXPECT_EQ(*after.reference_frame, 7u);  // the view held before SSP, not a new one
+  EXPECT_EQ(after.patch, SlicePatch(kFrame, kSlices, 2, kPatch));
+  ASSERT_TRUE(after.step.match.found);
+  const std::vector<int> positions = Positions(12);
+  EXPECT_NEAR(after.step.match.displacement.x, -(positions[i] - positions[0]), 0.5);
+}
+
+TEST(ModeRunnerTest, SspRestartedWhileRunningStillGoesBackToTheFixationBeforeIt) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(14, 7);
+  Feed(runner, frames[0]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});
+  Feed(runner, frames[1]);
+  Feed(runner, frames[2]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});  // the operator again
+  std::size_t i = 3;
+  while (events.finished_slice_reports() == 0 && i < frames.size()) Feed(runner, frames[i++]);
+  ASSERT_EQ(events.finished_slice_reports(), 1);
+  EXPECT_EQ(runner.mode(), AgentMode::kFixate);
+  EXPECT_EQ(runner.slice(), (kSlices + 1) / 2);
+}
+
+TEST(ModeRunnerTest, SspStartedWhileIdleStillEndsIdle) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(12, 7);
+  Feed(runner, frames[0]);
+  runner.RequestMode(AgentMode::kIdle);
+  Feed(runner, frames[1]);
+  runner.RequestMode(AgentMode::kSsp, SwingDeadline{8, 100.0});
+  std::size_t i = 2;
+  while (events.finished_slice_reports() == 0 && i < frames.size()) Feed(runner, frames[i++]);
+  ASSERT_EQ(events.finished_slice_reports(), 1);
+  EXPECT_EQ(runner.mode(), AgentMode::kIdle);
+}
+
+TEST(ModeRunnerTest, FixateReportsEachNewReference) {
+  RecordingModeEvents events;
+  ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+  const std::vector<CapturedFrame> frames = Swing(3);
+  Feed(runner, frames[0]);
+  Feed(runner, frames[1]);
+  EXPECT_EQ(events.references_taken, 1);
+  runner.RequestMode(AgentMode::kFixate);
+  Feed(runner, frames[2]);
+  EXPECT_EQ(events.references_taken, 2);
 }
 
 }  // namespace

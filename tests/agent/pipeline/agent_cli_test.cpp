@@ -28,11 +28,12 @@ std::filesystem::path ScratchDir() {
 
 Outcome RunAgent(const std::string& args, const std::filesystem::path& scratch) {
   const std::filesystem::path err_file = scratch / "stderr.txt";
-  // Private link addresses and photo folder, at full speed: tests run side by side.
-  const std::string link = " --max-speed --command-address ipc://" +
-                           (scratch / "commands").string() + " --stream-address ipc://" +
-                           (scratch / "streams").string() + " --photos " +
-                           (scratch / "photos").string();
+  // Private link addresses, photo and state folders, at full speed: tests run side by side.
+  // No resume: each run from its flags.
+  const std::string link =
+      " --max-speed --no-resume --command-address ipc://" + (scratch / "commands").string() +
+      " --stream-address ipc://" + (scratch / "streams").string() + " --photos " +
+      (scratch / "photos").string() + " --state-dir " + (scratch / "state").string();
   const std::string command = std::string(KAPFIX_AGENT) + " " + args + link + " >" +
                               (scratch / "stdout.txt").string() + " 2>" + err_file.string();
   Outcome outcome;

@@ -25,6 +25,7 @@ AgentConfig KiteConfig(ControllerKind controller) {
   config.link.command_address = "ipc://" + base + ".cmd";
   config.link.stream_address = "ipc://" + base + ".stream";
   config.photos.dir = base + "_photos";
+  config.state_dir = base + "_state";  // not ./kapfix-state: what it stores stays private
   return config;
 }
 
@@ -35,6 +36,7 @@ constexpr AgentOptions Fast(std::uint64_t frames) {
 FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
   AgentOptions options = Fast(frames);
   options.keep_telemetry = true;
+  options.resume = false;  // each flight from its configuration, not from the previous one's
   Agent agent(config, options);
   EXPECT_TRUE(agent.simulated());
   const PipelineStats stats = agent.Run();
