@@ -19,6 +19,9 @@ bool DegPerPxEstimatorOptions::IsValid(std::string* error) const {
     if (error) *error = message;
     return false;
   };
+  if (order < 1 || order > 8) {
+    return fail("deg/px estimator swing model order must be 1…8, got " + std::to_string(order));
+  }
   if (window_frames < 20 || window_frames > 10000) {
     return fail("deg/px estimator window must be 20…10000 frames, got " +
                 std::to_string(window_frames));
@@ -82,30 +85,34 @@ void DegPerPxEstimator::Add(double angle_deg, double displacement_px) {
 }
 
 double DegPerPxEstimator::ResidualSumOfSquares(double theta, int* rows) const {
-  // Normal equations of u_t = α1·u_{t−1} + α2·u_{t−2} + c over rows with three valid frames.
-  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  // Normal equations of u_t = α1·u_{t−1} + … + αp·u_{t−p} + c over rows whose p + 1 frames
+  // are all measured.
+  const int p = options_.order;
+  Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(p + 1, p + 1);
+  Eigen::VectorXd atb = Eigen::VectorXd::Zero(p + 1);
+  Eigen::VectorXd x(p + 1);
   double btb = 0;
   int n = 0;
   const int size = static_cast<int>(window_.size());
-  for (int t = 2; t < size; ++t) {
-    const Sample& s0 = window_[t];
-    const Sample& s1 = window_[t - 1];
-    const Sample& s2 = window_[t - 2];
-    if (!s0.valid || !s1.valid || !s2.valid) continue;
-    const double u0 = s0.displacement_px + theta * s0.angle_deg;
-    const Eigen::Vector3d x(s1.displacement_px + theta * s1.angle_deg,
-                            s2.displacement_px + theta * s2.angle_deg, 1.0);
+  for (int t = p; t < size; ++t) {
+    bool valid = true;
+    for (int i = 0; i <= p && valid; ++i) valid = window_[t - i].valid;
+    if (!valid) continue;
+    const double u0 = window_[t].displacement_px + theta * window_[t].angle_deg;
+    for (int i = 1; i <= p; ++i) {
+      x(i - 1) = window_[t - i].displacement_px + theta * window_[t - i].angle_deg;
+    }
+    x(p) = 1.0;
     ata += x * x.transpose();
     atb += x * u0;
     btb += u0 * u0;
     ++n;
   }
   *rows = n;
-  if (n < 6) return std::numeric_limits<double>::quiet_NaN();
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(ata);
+  if (n < 3 * (p + 1)) return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(ata);
   if (ldlt.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
-  const Eigen::Vector3d w = ldlt.solve(atb);
+  const Eigen::VectorXd w = ldlt.solve(atb);
   // RSS = bᵀb − wᵀAᵀb for the least-squares w.
   return std::max(0.0, btb - w.dot(atb));
 }
@@ -141,7 +148,7 @@ void DegPerPxEstimator::Fit() {
   const double log_theta = log_lo + best * step + offset;
   estimate_deg_per_px_ = sign / std::exp(log_theta);
   // s² from the residual at the minimum (four unknowns: α1, α2, c, θ).
-  const double s2 = r1 / std::max(1, rows - 4);
+  const double s2 = r1 / std::max(1, rows - options_.order - 2);
   relative_sigma_ = std::sqrt(2.0 * s2 / curvature);  // σ of log θ ≈ σ_θ/θ
 }
 

@@ -7,10 +7,13 @@ namespace kapfix {
 
 struct DegPerPxEstimatorOptions {
   int window_frames = 250;  // [frames] recent frames the estimate is fitted on
-  int min_samples = 60;     // [frames] fitted rows before the estimate may be trusted
-  int refit_every = 5;      // [frames] between fits
+  // [1] AR order of the swing model: 2 is a damped pendulum; more absorbs coloured
+  // turbulence on top of it, which an AR(2) would partly blame on the servo.
+  int order = 2;
+  int min_samples = 60;  // [frames] fitted rows before the estimate may be trusted
+  int refit_every = 5;   // [frames] between fits
   // [1] the estimate is trusted once its relative standard deviation is below this.
-  double max_relative_sigma = 0.05;
+  double max_relative_sigma = 0.035;
   // [1] the search spans [1/this, this] × the starting calibration: a lens is never off by
   // more, and a fit on a degenerate stretch must not run away.
   double max_ratio = 2.5;
