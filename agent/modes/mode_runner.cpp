@@ -21,8 +21,9 @@
 namespace kapfix::agent {
 namespace {
 
-// Whether two settings build the same fixation loop (Rebuild's inputs: search, controller,
-// active lens). A setting re-sent unchanged must not reset the controller (issue 15, item 7).
+// Whether two settings build the same fixation loop (Rebuild's inputs: search, controller
+// kind, active lens) but for the controller's gains, which the loop takes without a rebuild.
+// A setting re-sent unchanged, or new gains, must not reset the controller (issue 15, item 7).
 bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
   const SearchConfig& s = a.search;
   const SearchConfig& t = b.search;
@@ -34,9 +35,7 @@ bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
          s.sampling.seed == t.sampling.seed && s.patch_px == t.patch_px && s.slices == t.slices &&
          s.axis == t.axis && s.range_px == t.range_px && s.channel == t.channel &&
          s.subpixel == t.subpixel && s.slice_score == t.slice_score &&
-         s.dc_hysteresis_px == t.dc_hysteresis_px && c.kind == d.kind && c.kp == d.kp &&
-         c.ki == d.ki && c.kd == d.kd && c.dead_band_px == d.dead_band_px &&
-         c.max_rate_deg_per_s == d.max_rate_deg_per_s && l.name == m.name &&
+         s.dc_hysteresis_px == t.dc_hysteresis_px && c.kind == d.kind && l.name == m.name &&
          l.DegPerPxPan() == m.DegPerPxPan() && l.DegPerPxTilt() == m.DegPerPxTilt();
 }
 
@@ -178,7 +177,11 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     }
   }
   try {
-    if (rebuild) Rebuild();
+    if (rebuild) {
+      Rebuild();
+    } else if (pending.settings && loop_) {
+      loop_->SetGains(MakeGains(settings_.controller));  // bumpless: the controller keeps state
+    }
     if (pending.mode) Enter(pending.mode->first, pending.mode->second, frame, current);
   } catch (const std::exception& e) {
     // A setting that cannot work with this camera (a patch larger than the frame) or a

@@ -54,6 +54,10 @@ class Controller {
   virtual std::string name() const = 0;
   // The lens's deg per px may change in flight (new calibration, another lens profile).
   virtual void SetCalibration(const LensCalibration& calibration) = 0;
+  // New operator gains, bumpless: the history (swing models, integrator, previous error)
+  // stays, so a gain change — or the same gains sent again — causes no transient (issue 15,
+  // item 7). Throws std::invalid_argument for gains that are not IsValid (nothing changes).
+  virtual void SetGains(const ControllerGains& gains) = 0;
 };
 
 // Limits each axis's move from `current` to rate_deg_per_s · dt_s; rate 0 = no limit. A

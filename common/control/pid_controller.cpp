@@ -25,6 +25,19 @@ void PidController::SetCalibration(const LensCalibration& calibration) {
   calibration_ = calibration;
 }
 
+void PidController::SetGains(const ControllerGains& gains) {
+  std::string error;
+  if (!gains.IsValid(&error)) throw std::invalid_argument("PidController: " + error);
+  // Bumpless: the integral term i · I stays what it was (within the new anti-windup limit).
+  if (gains.i > 0 && gains_.i > 0) {
+    integral_ *= gains_.i / gains.i;
+    const double limit = gains.integral_limit_px / gains.i;
+    integral_.x = std::clamp(integral_.x, -limit, limit);
+    integral_.y = std::clamp(integral_.y, -limit, limit);
+  }
+  gains_ = gains;
+}
+
 void PidController::Reset() {
   integral_ = {0, 0};
   previous_ = {0, 0};

@@ -23,6 +23,9 @@ class PidController final : public Controller {
   void Reset() override;
   std::string name() const override { return "pid"; }
   void SetCalibration(const LensCalibration& calibration) override;
+  // Keeps the integral term's contribution i · I across a change of i (I is rescaled), so the
+  // target does not jump.
+  void SetGains(const ControllerGains& gains) override;
 
   // [px·s] the integral of the displacement so far.
   cv::Point2d integral() const { return integral_; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace kapfix {
@@ -30,7 +31,15 @@ bool PredictiveOptions::IsValid(std::string* error) const {
     if (error) *error = "min confidence must be in [0, 1], got " + std::to_string(min_confidence);
     return false;
   }
-  return true;
+  if (adapt_every_frames < 1 || adapt_every_frames > 100000 || !(adapt_max_step > 1.0) ||
+      !(adapt_max_step <= 2.0)) {
+    if (error) {
+      *error = "calibration adaptation needs every 1…100000 frames and a step in (1, 2], got " +
+               std::to_string(adapt_every_frames) + " and " + std::to_string(adapt_max_step);
+    }
+    return false;
+  }
+  return estimator.IsValid(error);
 }
 
 PredictiveController::PredictiveController(ControllerGains gains, LensCalibration calibration,
@@ -40,7 +49,9 @@ PredictiveController::PredictiveController(ControllerGains gains, LensCalibratio
       options_(Validated(options)),
       fallback_(gains, calibration),  // validates gains and calibration
       pan_(options_.predictor),
-      tilt_(options_.predictor) {}
+      tilt_(options_.predictor),
+      pan_estimator_(calibration.pan_deg_per_px, options_.estimator),
+      tilt_estimator_(calibration.tilt_deg_per_px, options_.estimator) {}
 
 void PredictiveController::Reset() {
   pan_.Clear();
@@ -48,12 +59,67 @@ void PredictiveController::Reset() {
   fallback_.Reset();
   pan_trust_ = tilt_trust_ = {};
   predicting_pan_ = predicting_tilt_ = false;
+  recent_.clear();
+  // The lens has not changed: the calibration estimate stays, its lags restart.
+  pan_estimator_.AddMissing();
+  tilt_estimator_.AddMissing();
+}
+
+void PredictiveController::RebuildSwingModels() {
+  pan_.Clear();
+  tilt_.Clear();
+  for (const Sample& s : recent_) {
+    if (std::isfinite(s.dx_px)) {
+      pan_.Add(s.pan_deg / calibration_.pan_deg_per_px + s.dx_px);
+      tilt_.Add(s.tilt_deg / calibration_.tilt_deg_per_px + s.dy_px);
+    } else {
+      pan_.AddMissing();
+      tilt_.AddMissing();
+    }
+  }
+}
+
+bool PredictiveController::Adapt() {
+  if (!options_.adapt_calibration || ++since_adapt_ < options_.adapt_every_frames) return false;
+  since_adapt_ = 0;
+  const auto toward = [this](double now, const DegPerPxEstimator& estimator) {
+    if (!estimator.trusted()) return now;
+    const double step = options_.adapt_max_step;
+    const double ratio = std::clamp(estimator.estimate_deg_per_px() / now, 1.0 / step, step);
+    // Within 1 % the move is not worth rebuilding the swing models for.
+    return std::abs(ratio - 1.0) < 0.01 ? now : now * ratio;
+  };
+  const LensCalibration next{toward(calibration_.pan_deg_per_px, pan_estimator_),
+                             toward(calibration_.tilt_deg_per_px, tilt_estimator_)};
+  if (next.pan_deg_per_px == calibration_.pan_deg_per_px &&
+      next.tilt_deg_per_px == calibration_.tilt_deg_per_px) {
+    return false;
+  }
+  calibration_ = next;
+  fallback_.SetCalibration(calibration_);
+  RebuildSwingModels();
+  // The residual that handed an axis over to P was (partly) the old calibration's: grade the
+  // forecast afresh, and let it come back as soon as it forecasts the swing well.
+  for (AxisTrust* trust : {&pan_trust_, &tilt_trust_}) {
+    trust->hold = 0;
+    trust->residual_sq = 0;
+    trust->graded = 0;
+  }
+  return true;
+}
+
+void PredictiveController::SetGains(const ControllerGains& gains) {
+  fallback_.SetGains(gains);  // validates
+  gains_ = gains;
 }
 
 void PredictiveController::SetCalibration(const LensCalibration& calibration) {
   fallback_.SetCalibration(calibration);  // validates
   calibration_ = calibration;
-  Reset();
+  pan_estimator_.Restart(calibration.pan_deg_per_px);
+  tilt_estimator_.Restart(calibration.tilt_deg_per_px);
+  since_adapt_ = 0;
+  RebuildSwingModels();
 }
 
 ServoTargets PredictiveController::Update(const ControlInput& input, const ServoTargets& current) {
@@ -62,6 +128,12 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
                         input.confidence >= options_.min_confidence;
   ServoTargets target = current;
   predicting_pan_ = predicting_tilt_ = false;
+  const auto remember = [this, &current](double dx, double dy) {
+    recent_.push_back({current.pan_deg, current.tilt_deg, dx, dy});
+    while (static_cast<int>(recent_.size()) > options_.predictor.window_frames) {
+      recent_.pop_front();
+    }
+  };
   // Frames the camera lost show as a dt of several frame periods (the shortest dt seen):
   // the swing models get them as missing samples, so their one-sample-per-frame clock holds.
   if (std::isfinite(input.dt_s) && input.dt_s > 0) {
@@ -70,9 +142,17 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     for (int k = 0; k < std::min(lost, options_.predictor.max_coast_frames + 1); ++k) {
       pan_.AddMissing();
       tilt_.AddMissing();
+      remember(std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN());
+    }
+    if (lost > 0) {
+      pan_estimator_.AddMissing();
+      tilt_estimator_.AddMissing();
     }
   }
   if (!measured) {
+    pan_estimator_.AddMissing();
+    tilt_estimator_.AddMissing();
+    remember(std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN());
     // Bridge a short gap with the forecast; hold once the models give up.
     const bool pan_coasts = pan_.AddMissing();
     const bool tilt_coasts = tilt_.AddMissing();
@@ -88,9 +168,16 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     return ApplyRateLimit(target, current, gains_.rate_limit_deg_per_s, input.dt_s);
   }
 
-  // The uncorrected view [px]: what the servo compensated plus what was still left.
-  pan_.Add(current.pan_deg / calibration_.pan_deg_per_px + d.x);
-  tilt_.Add(current.tilt_deg / calibration_.tilt_deg_per_px + d.y);
+  pan_estimator_.Add(current.pan_deg, d.x);
+  tilt_estimator_.Add(current.tilt_deg, d.y);
+  remember(d.x, d.y);
+  const bool rebuilt = Adapt();  // before the models take this frame: a rebuild includes it
+  // The uncorrected view [px]: what the servo compensated plus what was still left (a
+  // rebuild in Adapt already added it).
+  if (!rebuilt) {
+    pan_.Add(current.pan_deg / calibration_.pan_deg_per_px + d.x);
+    tilt_.Add(current.tilt_deg / calibration_.tilt_deg_per_px + d.y);
+  }
   const ServoTargets proportional = fallback_.Update(input, current);
 
   const auto axis = [this](const SwingPredictor& predictor, AxisTrust* trust, double measured_px,

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <deque>
 #include <string>
 
 #include "common/control/controller.hpp"
+#include "common/control/deg_per_px_estimator.hpp"
 #include "common/control/proportional_controller.hpp"
 #include "common/control/swing_predictor.hpp"
 
@@ -15,6 +17,13 @@ struct PredictiveOptions {
   SwingPredictorOptions predictor;
   // Below this match confidence a frame is treated as missing (the model coasts).
   double min_confidence = 0.0;
+  // Online calibration: while the estimate of an axis's deg per px is trusted, the
+  // calibration the controller acts on moves towards it every adapt_every_frames by at most
+  // the factor adapt_max_step (bounded rate of change). false: the estimate is only reported.
+  bool adapt_calibration = true;
+  int adapt_every_frames = 10;  // [frames]
+  double adapt_max_step = 1.1;  // [1] > 1
+  DegPerPxEstimatorOptions estimator;
 
   bool IsValid(std::string* error) const;
 };
@@ -43,8 +52,13 @@ class PredictiveController final : public Controller {
   ServoTargets Update(const ControlInput& input, const ServoTargets& current) override;
   void Reset() override;
   std::string name() const override { return "predictive"; }
-  // Also forgets the swing models: they are kept in pixels of the old calibration.
+  // A new stored calibration: the online estimate starts again from it. The swing models
+  // are rebuilt from the recent frames in pixels of the new calibration.
   void SetCalibration(const LensCalibration& calibration) override;
+  // Keeps the swing models, the online calibration and the hand-over state.
+  void SetGains(const ControllerGains& gains) override;
+  // The calibration the controller acts on now (the stored one, moved by the online estimate).
+  const LensCalibration& calibration() const { return calibration_; }
 
   // Whether each axis acted on its forecast (not the P fallback) at the last Update.
   bool predicting_pan() const { return predicting_pan_; }
@@ -54,6 +68,10 @@ class PredictiveController final : public Controller {
   bool predicting_tilt() const { return predicting_tilt_; }
   const SwingPredictor& pan_predictor() const { return pan_; }
   const SwingPredictor& tilt_predictor() const { return tilt_; }
+  // The online estimates of each axis's deg per px (from the commands and the measured
+  // response; see DegPerPxEstimator).
+  const DegPerPxEstimator& pan_estimator() const { return pan_estimator_; }
+  const DegPerPxEstimator& tilt_estimator() const { return tilt_estimator_; }
 
  private:
   ControllerGains gains_;
@@ -62,6 +80,17 @@ class PredictiveController final : public Controller {
   ProportionalController fallback_;
   SwingPredictor pan_;
   SwingPredictor tilt_;
+  DegPerPxEstimator pan_estimator_;
+  DegPerPxEstimator tilt_estimator_;
+  // Recent frames, per axis (angle [deg], displacement [px]; NaN displacement: missing), from
+  // which the swing models are rebuilt when the calibration moves.
+  struct Sample {
+    double pan_deg, tilt_deg, dx_px, dy_px;
+  };
+  std::deque<Sample> recent_;
+  int since_adapt_ = 0;  // [frames] since the calibration last moved (or was checked)
+  bool Adapt();          // true when the calibration moved (the swing models were rebuilt)
+  void RebuildSwingModels();
   bool predicting_pan_ = false;
   bool predicting_tilt_ = false;
   double frame_period_s_ = 0;  // [s] shortest dt seen: one frame; 0 = none yet

@@ -25,6 +25,12 @@ void ProportionalController::SetCalibration(const LensCalibration& calibration) 
   calibration_ = calibration;
 }
 
+void ProportionalController::SetGains(const ControllerGains& gains) {
+  std::string error;
+  if (!gains.IsValid(&error)) throw std::invalid_argument("ProportionalController: " + error);
+  gains_ = gains;
+}
+
 ServoTargets ProportionalController::Update(const ControlInput& input,
                                             const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;

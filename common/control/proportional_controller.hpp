@@ -20,6 +20,7 @@ class ProportionalController final : public Controller {
   void Reset() override {}
   std::string name() const override { return "p"; }
   void SetCalibration(const LensCalibration& calibration) override;
+  void SetGains(const ControllerGains& gains) override;
 
  private:
   ControllerGains gains_;

@@ -224,6 +224,15 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.silent_gross_pct = 100.0 * silent_gross / n;
   figures.dropped_pct = 100.0 * dropped / n;
   figures.predicting_pct = 100.0 * predicting / n;
+  figures.deg_per_px_estimate_ratio = nan;
+  figures.deg_per_px_estimate_sigma = nan;
+  if (predictive) {
+    const DegPerPxEstimator& estimator = predictive->pan_estimator();
+    figures.deg_per_px_estimate_ratio =
+        estimator.estimate_deg_per_px() * platform_options.px_per_deg;
+    figures.deg_per_px_estimate_sigma = estimator.relative_sigma();
+    figures.deg_per_px_estimate_trusted = estimator.trusted();
+  }
   figures.fps = total_us > 0 ? n / (total_us * 1e-6) : 0.0;
   figures.loop_latency_p50_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 50.0) / 1000.0;
   figures.loop_latency_p99_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 99.0) / 1000.0;

@@ -82,6 +82,11 @@ struct ClosedLoopFigures {
   int frames = 0;
   double fps = 0;  // frames per wall-clock second of Process()
   double loop_latency_p50_ms = 0, loop_latency_p99_ms = 0;  // [ms] of Process()
+  // [1] the predictive controller's final online estimate of the pan axis's deg per px ÷ the
+  // true value (1 = perfect); NaN for the other controllers.
+  double deg_per_px_estimate_ratio = 0;
+  double deg_per_px_estimate_sigma = 0;  // [1] its relative standard deviation
+  bool deg_per_px_estimate_trusted = false;
   double predicting_pct = 0;  // [%] frames where the predictive controller used its forecast
   std::vector<cv::Point2d> view_offsets;  // [px] ViewOffset of each processed frame
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)

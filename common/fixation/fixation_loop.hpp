@@ -92,6 +92,8 @@ class FixationLoop {
   Step Process(const cv::Mat& frame_bgr, const ServoTargets& current, double dt_s);
 
   void SetCalibration(const LensCalibration& calibration);
+  // New operator gains for the controller, keeping its history (bumpless; issue 15 item 7).
+  void SetGains(const ControllerGains& gains) { controller_->SetGains(gains); }
   const FixationOptions& options() const { return options_; }
   const Controller& controller() const { return *controller_; }
 

@@ -265,6 +265,28 @@ TEST(ModeRunnerTest, SettingsThatChangeNothingKeepTheControllersState) {
   }
 }
 
+// Issue 15, item 7: new gains reach the controller without a rebuild (bumpless). A rate
+// limit raised where it never binds is a gain change that moves no target: the
+// runner told it midway must command exactly what the untouched one does, integral and all.
+TEST(ModeRunnerTest, AGainChangeKeepsTheControllersState) {
+  AgentConfig config = SmallConfig();
+  config.controller.kind = ControllerKind::kPid;
+  config.controller.ki = 0.2;
+  RecordingModeEvents events_a;
+  RecordingModeEvents events_b;
+  ModeRunner untouched(config, Options(AgentMode::kFixate), events_a);
+  ModeRunner changed(config, Options(AgentMode::kFixate), events_b);
+  AgentConfig faster = config;
+  faster.controller.max_rate_deg_per_s = config.controller.max_rate_deg_per_s + 1;
+  const std::vector<CapturedFrame> frames = Swing(12);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i == 6) changed.RequestSettings(faster);
+    const FrameOutcome a = Feed(untouched, frames[i]);
+    const FrameOutcome b = Feed(changed, frames[i]);
+    EXPECT_DOUBLE_EQ(a.step.targets.pan_deg, b.step.targets.pan_deg) << "frame " << i;
+  }
+}
+
 TEST(ModeRunnerTest, IdleHoldsTheServosWhereTheyAre) {
   RecordingModeEvents events;
   ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle), events);

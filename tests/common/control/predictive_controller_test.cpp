@@ -4,7 +4,11 @@
 
 #include <cmath>
 #include <deque>
+#include <functional>
+#include <memory>
 #include <numbers>
+#include <stdexcept>
+#include <vector>
 
 #include "common/control/proportional_controller.hpp"
 
@@ -154,6 +158,58 @@ TEST(PredictiveControllerTest, KeepsItsForecastWhileTheViewShowsItWorks) {
   loop.Run(controller, 300, 0);
   EXPECT_DOUBLE_EQ(controller.pan_forecast_weight(), 1.0);
   EXPECT_TRUE(controller.predicting_pan());
+}
+
+}  // namespace
+}  // namespace kapfix
+
+namespace kapfix {
+namespace {
+
+// Issue 15, item 7: a gain change mid-flight keeps the swing models (bumpless). The loop runs
+// 200 frames, then `change` acts on the controller, then 100 more frames: the largest view
+// error over those.
+double WorstAfterChange(const std::function<void(std::unique_ptr<Controller>*)>& change) {
+  std::unique_ptr<Controller> controller =
+      std::make_unique<PredictiveController>(NoDeadBand(), LensCalibration{0.1, 0.1}, Lead(2));
+  std::vector<double> commands;
+  double worst = 0;
+  for (int t = 0; t < 300; ++t) {
+    if (t == 200) change(&controller);
+    const double angle = t >= 2 ? commands[static_cast<std::size_t>(t - 2)] : 0.0;
+    const double offset = NumericLoop::Swing(t) + angle * 10;
+    if (t >= 200) worst = std::max(worst, std::abs(offset));
+    commands.push_back(controller->Update(Measured(-offset), {angle, 0}).pan_deg);
+  }
+  return worst;
+}
+
+TEST(PredictiveControllerGainsTest, TheSameGainsSentAgainCauseNoTransient) {
+  EXPECT_LT(WorstAfterChange([](std::unique_ptr<Controller>* c) { (*c)->SetGains(NoDeadBand()); }),
+            1.0);
+}
+
+TEST(PredictiveControllerGainsTest, AChangedGainCausesNoTransient) {
+  ControllerGains softer = NoDeadBand();
+  softer.p = 0.9;
+  const double kept =
+      WorstAfterChange([&softer](std::unique_ptr<Controller>* c) { (*c)->SetGains(softer); });
+  // A rebuilt controller starts without a swing model: that is the transient a bumpless
+  // change avoids.
+  const double rebuilt = WorstAfterChange([&softer](std::unique_ptr<Controller>* c) {
+    *c = std::make_unique<PredictiveController>(softer, LensCalibration{0.1, 0.1}, Lead(2));
+  });
+  EXPECT_LT(kept, 5.0);
+  EXPECT_GT(rebuilt, 4 * kept) << "the control case shows no transient: " << rebuilt << " px";
+}
+
+TEST(PredictiveControllerGainsTest, InvalidGainsAreRefusedAndChangeNothing) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  ControllerGains bad = NoDeadBand();
+  bad.p = -1;
+  EXPECT_THROW(controller.SetGains(bad), std::invalid_argument);
+  const ServoTargets t = controller.Update(Measured(5), {0, 0});
+  EXPECT_NEAR(t.pan_deg, 0.5, 1e-9);  // p = 1 still: 5 px · 0.1 deg/px
 }
 
 }  // namespace
