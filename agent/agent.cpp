@@ -258,7 +258,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   spdlog::default_logger()->sinks().push_back(log_publisher_);
   photo_store_ = std::make_unique<PhotoStore>(config_.photos.dir);
   photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
-    return state_ ? state_->settings()->lens : config_.lens;
+    return state_->settings()->lens;  // photos are taken once the agent runs
   });
   photos_->SetInterval(config_.photos.interval_s);
   video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
@@ -290,7 +290,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   modes.actuation_delay_frames = pipeline.actuation_delay_frames;
   modes.frame_period_s = 1.0 / fps;
   modes.recordings_dir = (std::filesystem::path(config_.photos.dir) / "free-swing").string();
-  modes_ = std::make_unique<ModeRunner>(config_, modes, *state_);
+  modes_ = std::make_unique<ModeRunner>(state_->settings(), modes, *state_);
 
   std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
   if (options_.keep_telemetry) observers.push_back(&telemetry_);
@@ -356,10 +356,11 @@ void Agent::Stop() {
 }
 
 std::string Agent::Describe() const {
+  const auto settings = state_->settings();
   return source_->Describe() + "; " + servos_->Describe() + "; controller " +
-         std::string(ToString(config_.controller.kind)) + ", search " + config_.search.strategy +
-         " " + std::string(ToString(config_.search.axis)) + "; commands on " + command_endpoint_ +
-         ", streams on " + stream_endpoint_;
+         std::string(ToString(settings->controller.kind)) + ", search " +
+         settings->search.strategy + " " + std::string(ToString(settings->search.axis)) +
+         "; commands on " + command_endpoint_ + ", streams on " + stream_endpoint_;
 }
 
 }  // namespace kapfix::agent

@@ -90,7 +90,6 @@ class Agent {
   void Stop();
 
   bool simulated() const { return simulated_; }
-  const AgentConfig& config() const { return config_; }
   const TelemetryRecorder& telemetry() const { return telemetry_; }
   std::string Describe() const;  // camera, servos, controller, link on one line
   // Servo hard limits in force (from the config).
@@ -101,6 +100,8 @@ class Agent {
   std::uint64_t video_frames_sent() const { return video_->sent(); }
 
  private:
+  // The configuration as started: wiring reads its devices, link and folders. The settings
+  // are StateKeeper's (state_->settings()); nothing reads them here after construction.
   AgentConfig config_;
   AgentOptions options_;
   bool simulated_ = false;

@@ -67,7 +67,7 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
       targets_.photos.SetInterval(settings->photos.interval_s);
       break;
     default:
-      targets_.modes.RequestSettings(*settings);
+      targets_.modes.RequestSettings(settings);
       break;
   }
   return Ok();

@@ -206,6 +206,13 @@ bool AgentConfig::IsValid(std::string* error) const {
   return true;
 }
 
+void AgentConfig::ApplyLensCalibration(const std::string& lens_name,
+                                       const LensCalibration& calibration) {
+  for (LensProfile& profile : lenses) {
+    if (profile.name == lens_name) profile.ApplyCalibration(calibration);
+  }
+}
+
 const LensProfile& AgentConfig::active_lens() const {
   for (const LensProfile& profile : lenses) {
     if (profile.name == lens) return profile;

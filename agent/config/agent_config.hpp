@@ -44,6 +44,11 @@ struct AgentConfig {
   bool IsValid(std::string* error) const;
 
   const LensProfile& active_lens() const;  // the profile named by `lens` (IsValid first)
+
+  // A calibration of the profile named `lens` (LensProfile::ApplyCalibration); no profile of
+  // that name: nothing. One function so that the settings' owner and the control thread,
+  // which both hold the calibrated profile, hold the same one.
+  void ApplyLensCalibration(const std::string& lens, const LensCalibration& calibration);
 };
 
 // Reads the file's parts that are not operator settings (devices, link, folders, lens
