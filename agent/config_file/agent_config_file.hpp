@@ -3,7 +3,7 @@
 // kapfix-agent's configuration file (SPEC §4; issue 11): one JSON object. Its "settings"
 // object holds the operator settings as the kapfix.v1 settings messages in protobuf's JSON
 // mapping, keyed by the settings command that carries them without its "set_" ("gains",
-// "search", "camera", "lens", "video", "photo_interval_s": see settings_object.hpp); the
+// "search", …: see settings_object.hpp); the
 // other keys are the devices, the link, the folders and the lens profiles
 // (agent/config/agent_config.hpp). Every key: resources/README.md.
 
