@@ -36,6 +36,9 @@ int Fail(const std::string& message, int code) {
   return code;
 }
 
+// Named exception to the function-size and cognitive-complexity checks: the option wiring of
+// the whole agent, still one function (issue 11: agent/main.cpp is to shrink to wiring).
+// NOLINTNEXTLINE(readability-function-size,readability-function-cognitive-complexity)
 int Main(int argc, char** argv) {
   using namespace kapfix::agent;
   spdlog::set_default_logger(spdlog::stderr_color_mt("kapfix-agent"));
