@@ -95,12 +95,15 @@ std::string CheckJsonMessage(const nlohmann::json& object, const Descriptor& mes
   for (const auto& [key, value] : object.items()) {
     const FieldDescriptor* field = message.FindFieldByName(key);
     if (field == nullptr) field = message.FindFieldByCamelcaseName(key);
+    std::string field_path = path;
+    field_path.append(".").append(key);
     if (field == nullptr) {
-      return path + "." + key + ": unknown field of " + message.full_name() +
-             " (a typo? see resources/README.md)";
+      return field_path.append(": unknown field of ")
+          .append(message.full_name())
+          .append(" (a typo? see resources/README.md)");
     }
-    if (field->is_repeated()) return path + "." + key + ": lists are not settings";
-    if (std::string reason = CheckJsonValue(value, *field, path + "." + key); !reason.empty()) {
+    if (field->is_repeated()) return field_path.append(": lists are not settings");
+    if (std::string reason = CheckJsonValue(value, *field, field_path); !reason.empty()) {
       return reason;
     }
   }
@@ -155,8 +158,8 @@ bool ApplySettingsObject(const nlohmann::json& settings, AgentConfig* config, st
     std::string reason;
     if (!ApplySettingsCommand(command, config, &reason)) {
       // A cross-field reason names its field ("search.patch_px: …"); others get the key.
-      return fail(reason.find(": ") == std::string::npos ? "settings." + key + ": " + reason
-                                                         : reason);
+      if (reason.find(": ") == std::string::npos) reason.insert(0, "settings." + key + ": ");
+      return fail(reason);
     }
   }
   return true;
