@@ -99,7 +99,6 @@ class Agent {
   void Stop();
 
   bool simulated() const { return simulated_; }
-  const AgentConfig& config() const { return config_; }
   const TelemetryRecorder& telemetry() const { return telemetry_; }
   std::string Describe() const;  // camera, servos, controller, link on one line
   // Servo hard limits in force (from the config).
@@ -116,6 +115,8 @@ class Agent {
   void FlushResumeRecord() { resume_recorder_->Flush(); }
 
  private:
+  // The configuration as started: wiring reads its devices, link and folders. The settings
+  // are StateKeeper's (state_->settings()); nothing reads them here after construction.
   AgentConfig config_;
   AgentOptions options_;
   bool simulated_ = false;

@@ -70,7 +70,7 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
       targets_.photos.SetShutter(settings->photos);
       break;
     default:
-      targets_.modes.RequestSettings(*settings);
+      targets_.modes.RequestSettings(settings);
       break;
   }
   return Ok();

@@ -162,9 +162,7 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
     ChangedLocked();
     if (applied) {
       AgentConfig calibrated = *settings_;
-      for (LensProfile& profile : calibrated.lenses) {
-        if (profile.name == report.lens_profile()) profile.ApplyCalibration(*applied);
-      }
+      calibrated.ApplyLensCalibration(report.lens_profile(), *applied);
       settings_ = std::make_shared<const AgentConfig>(std::move(calibrated));
     }
   }

@@ -2,12 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "agent/config/config_reader.hpp"
 
@@ -43,8 +38,6 @@ void ReadCamera(ConfigReader& r, CameraConfig* c) {
   r.Read("height", &c->height);
   r.Read("fps", &c->fps);
   r.Read("format", &c->format);
-  r.Read("gain_db", &c->gain_db);
-  r.Read("exposure_us", &c->exposure_us);
 }
 
 void ReadServoAxis(ConfigReader& r, ServoAxisConfig* c) {
@@ -86,46 +79,10 @@ void ReadLens(ConfigReader& r, LensProfile* c) {
   r.Read("pixel_pitch_um", &c->pixel_pitch_um);
 }
 
+// The SSP swing's length; what is searched and how are operator settings ("settings").
 void ReadSearch(ConfigReader& r, SearchConfig* c) {
-  r.Read("strategy", &c->strategy);
-  r.ReadParsed<SamplingOptions>("sampling", &c->sampling,
-                                [](const std::string& text, SamplingOptions* o, std::string* why) {
-                                  return ParseSamplingOptions(text, o, why);
-                                });
-  r.Read("patch_px", &c->patch_px);
-  r.Read("slices", &c->slices);
-  r.ReadParsed<SearchAxis>("axis", &c->axis, Enum<SearchAxis>(ParseSearchAxis, "x, y or both"));
-  r.Read("range_px", &c->range_px);
-  // The settings message carries green and rgb-sum only; the per-channel rgb (the thesis's)
-  // is offered by kapfix-analyze until it has a value there.
-  r.ReadParsed<ColorChannel>(
-      "channel", &c->channel, [](const std::string& text, ColorChannel* value, std::string* why) {
-        const auto parsed = ParseColorChannel(text);
-        if (!parsed || *parsed == ColorChannel::kRgb) {
-          *why = "unknown value '" + text + "' (green or rgb-sum; per-channel rgb is for " +
-                 "kapfix-analyze only)";
-          return false;
-        }
-        *value = *parsed;
-        return true;
-      });
-  r.Read("subpixel", &c->subpixel);
-  r.ReadParsed<SliceScoreKind>(
-      "slice_score", &c->slice_score,
-      Enum<SliceScoreKind>(ParseSliceScoreKind, "dc, dc-hyst, fft or single-shot"));
-  r.Read("dc_hysteresis_px", &c->dc_hysteresis_px);
   r.Read("swing_frames", &c->swing_frames);
   r.Read("swing_seconds", &c->swing_seconds);
-}
-
-void ReadController(ConfigReader& r, ControllerConfig* c) {
-  r.ReadParsed<ControllerKind>("kind", &c->kind,
-                               Enum<ControllerKind>(ParseControllerKind, "p, pid or predictive"));
-  r.Read("kp", &c->kp);
-  r.Read("ki", &c->ki);
-  r.Read("kd", &c->kd);
-  r.Read("dead_band_px", &c->dead_band_px);
-  r.Read("max_rate_deg_per_s", &c->max_rate_deg_per_s);
 }
 
 void ReadLink(ConfigReader& r, LinkConfig* c) {
@@ -156,13 +113,13 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
     ReadLens(s, &c->lenses.emplace_back());
     return s.ok();
   });
-  r.Read("lens", &c->lens);
+  // The first profile is fitted unless settings.lens names another.
+  if (!c->lenses.empty() && std::none_of(c->lenses.begin(), c->lenses.end(),
+                                         [c](const LensProfile& p) { return p.name == c->lens; })) {
+    c->lens = c->lenses.front().name;
+  }
   r.ReadObject("search", [c](ConfigReader& s) {
     ReadSearch(s, &c->search);
-    return s.ok();
-  });
-  r.ReadObject("controller", [c](ConfigReader& s) {
-    ReadController(s, &c->controller);
     return s.ok();
   });
   r.ReadObject("link", [c](ConfigReader& s) {
@@ -171,26 +128,21 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
   });
   r.ReadObject("photos", [c](ConfigReader& s) {
     s.Read("dir", &c->photos.dir);
-    s.Read("interval_s", &c->photos.interval_s);
-    s.ReadParsed<ShutterMode>("shutter", &c->photos.shutter,
-                              Enum<ShutterMode>(ParseShutterMode, "interval or best-phase"));
-    s.Read("window_s", &c->photos.window_s);
-    s.Read("window_cap_s", &c->photos.window_cap_s);
-    s.Read("exposure_ms", &c->photos.exposure_ms);
-    s.ReadParsed<PhotoCameraKind>("camera", &c->photos.camera,
-                                  Enum<PhotoCameraKind>(ParsePhotoCameraKind, "agent or gphoto2"));
-    return s.ok();
-  });
-  r.ReadObject("video", [c](ConfigReader& s) {
-    s.Read("fps", &c->video.fps);
-    s.Read("quality", &c->video.quality);
-    s.Read("scale", &c->video.scale);
     return s.ok();
   });
   r.Read("watchdog_ms", &c->watchdog_ms);
   r.Read("state_dir", &c->state_dir);
   r.Read("resume", &c->resume);
+  r.Skip("settings");  // the operator settings: agent/config_file reads them
   r.Finish();
+}
+
+// Sections and keys of the file before the operator settings became "settings" (issue 11).
+bool IsMovedSetting(const std::string& error) {
+  for (const char* moved : {"controller:", "video:", "lens:", "camera.", "search.", "photos."}) {
+    if (error.rfind(moved, 0) == 0 && error.find("unknown key") != std::string::npos) return true;
+  }
+  return false;
 }
 
 bool IsAgentId(const std::string& id) {
@@ -255,6 +207,13 @@ bool AgentConfig::IsValid(std::string* error) const {
   return true;
 }
 
+void AgentConfig::ApplyLensCalibration(const std::string& lens_name,
+                                       const LensCalibration& calibration) {
+  for (LensProfile& profile : lenses) {
+    if (profile.name == lens_name) profile.ApplyCalibration(calibration);
+  }
+}
+
 const LensProfile& AgentConfig::active_lens() const {
   for (const LensProfile& profile : lenses) {
     if (profile.name == lens) return profile;
@@ -262,48 +221,20 @@ const LensProfile& AgentConfig::active_lens() const {
   return lenses.front();
 }
 
-bool ParseAgentConfig(const std::string& json_text, AgentConfig* config, std::string* error) {
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: …".
-    std::string what = e.what();
-    const std::size_t tag_end = what.find("] ");
-    if (tag_end != std::string::npos) what = what.substr(tag_end + 2);
-    if (error) *error = "invalid JSON: " + what;
-    return false;
-  }
-  AgentConfig parsed;
+bool ReadAgentDevices(const nlohmann::json& json, AgentConfig* config, std::string* error) {
   ConfigReader reader(json, "");
-  if (reader.ok()) ReadAgent(reader, &parsed);
-  if (!reader.ok()) {
-    if (error) *error = reader.error();
-    return false;
+  if (reader.ok()) ReadAgent(reader, config);
+  if (reader.ok()) return true;
+  if (error) {
+    *error = reader.error();
+    if (IsMovedSetting(*error)) {
+      *error +=
+          "; the operator settings moved to \"settings\": the kapfix.v1 settings messages in "
+          "protobuf's JSON mapping, e.g. {\"settings\": {\"gains\": {\"p\": 0.8}}} "
+          "(resources/README.md)";
+    }
   }
-  if (!parsed.IsValid(error)) return false;
-  *config = std::move(parsed);
-  return true;
-}
-
-bool LoadAgentConfig(const std::string& path, AgentConfig* config, std::string* error) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    if (error) *error = path + ": cannot read (" + std::strerror(errno) + ")";
-    return false;
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) {
-    if (error) *error = path + ": read error";
-    return false;
-  }
-  std::string reason;
-  if (!ParseAgentConfig(text.str(), config, &reason)) {
-    if (error) *error = path + ": " + reason;
-    return false;
-  }
-  return true;
+  return false;
 }
 
 }  // namespace kapfix::agent

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,8 @@
 
 namespace kapfix::agent {
 
-// kapfix-agent's one configuration file (SPEC §4), JSON. Every key, its default and its unit:
+// kapfix-agent's one configuration (SPEC §4), read from its JSON file by
+// agent/config_file/agent_config_file.hpp. Every key, its default and its unit:
 // resources/README.md; examples: resources/kite.json, resources/boat.json. A default-built
 // AgentConfig is valid and runs everything in simulation.
 struct AgentConfig {
@@ -45,14 +47,17 @@ struct AgentConfig {
   bool IsValid(std::string* error) const;
 
   const LensProfile& active_lens() const;  // the profile named by `lens` (IsValid first)
+
+  // A calibration of the profile named `lens` (LensProfile::ApplyCalibration); no profile of
+  // that name: nothing. One function so that the settings' owner and the control thread,
+  // which both hold the calibrated profile, hold the same one.
+  void ApplyLensCalibration(const std::string& lens, const LensCalibration& calibration);
 };
 
-// Parses a configuration from JSON text: keys not given keep their defaults; unknown keys,
-// wrong types and invalid values are errors naming the field ("camera.fps: …"), invalid JSON
-// an error with line and column. `config` is only written on success.
-bool ParseAgentConfig(const std::string& json_text, AgentConfig* config, std::string* error);
-
-// Reads and parses a configuration file; errors start with the file's path.
-bool LoadAgentConfig(const std::string& path, AgentConfig* config, std::string* error);
+// Reads the file's parts that are not operator settings (devices, link, folders, lens
+// profiles; everything but its "settings" object, which agent/config_file reads) from the
+// file's root object into `config`: keys not given keep their values; unknown keys and wrong
+// types are errors naming the field ("camera.fps: …"). Does not check IsValid.
+bool ReadAgentDevices(const nlohmann::json& json, AgentConfig* config, std::string* error);
 
 }  // namespace kapfix::agent

@@ -41,6 +41,9 @@ class ConfigReader {
   bool ReadObjectArray(std::string_view key,
                        const std::function<bool(ConfigReader&, std::size_t index)>& read);
 
+  // Marks `key` read without reading it: another reader owns it.
+  void Skip(std::string_view key) { read_.emplace(key); }
+
   // Whether the object has `key` (does not mark it read).
   bool Has(std::string_view key) const { return object_.is_object() && object_.contains(key); }
 

@@ -75,9 +75,10 @@ SearchOptions MakeSearchOptions(const SearchConfig& search) {
 
 }  // namespace
 
-ModeRunner::ModeRunner(const AgentConfig& settings, ModeRunnerOptions options, ModeEvents& events)
-    : options_(std::move(options)), events_(events), settings_(settings) {
-  slice_ = (settings_.search.slices + 1) / 2;
+ModeRunner::ModeRunner(std::shared_ptr<const AgentConfig> settings, ModeRunnerOptions options,
+                       ModeEvents& events)
+    : options_(std::move(options)), events_(events), settings_(std::move(settings)) {
+  slice_ = (settings_->search.slices + 1) / 2;
   Rebuild();
   pending_.mode = std::make_pair(options_.start_mode, options_.default_deadline);
 }
@@ -87,9 +88,9 @@ void ModeRunner::RequestMode(AgentMode mode, std::optional<SwingDeadline> deadli
   pending_.mode = std::make_pair(mode, deadline.value_or(options_.default_deadline));
 }
 
-void ModeRunner::RequestSettings(const AgentConfig& settings) {
+void ModeRunner::RequestSettings(std::shared_ptr<const AgentConfig> settings) {
   std::lock_guard lock(pending_mutex_);
-  pending_.settings = settings;
+  pending_.settings = std::move(settings);
 }
 
 void ModeRunner::RequestSlice(int slice) {
@@ -105,11 +106,11 @@ void ModeRunner::RequestResume(cv::Mat reference_frame_bgr, int slice) {
 
 FixationOptions ModeRunner::MakeFixationOptions(AgentMode mode) const {
   FixationOptions o;
-  o.search = MakeSearchOptions(settings_.search);
-  o.sampling = settings_.search.sampling;
-  o.channel = settings_.search.channel;
-  o.patch_size = settings_.search.patch_px;
-  o.slice_count = settings_.search.slices;
+  o.search = MakeSearchOptions(settings_->search);
+  o.sampling = settings_->search.sampling;
+  o.channel = settings_->search.channel;
+  o.patch_size = settings_->search.patch_px;
+  o.slice_count = settings_->search.slices;
   o.slice = slice_;
   o.reference = mode == AgentMode::kFollow ? FixationOptions::Reference::kPrevious
                                            : FixationOptions::Reference::kStored;
@@ -119,12 +120,12 @@ FixationOptions ModeRunner::MakeFixationOptions(AgentMode mode) const {
 void ModeRunner::Rebuild() {
   std::string error;
   std::shared_ptr<const SearchStrategy> strategy =
-      MakeSearchStrategy(settings_.search.strategy, &error);
+      MakeSearchStrategy(settings_->search.strategy, &error);
   if (!strategy) throw std::runtime_error("search: " + error);
-  const LensProfile& lens = settings_.active_lens();
+  const LensProfile& lens = settings_->active_lens();
   const LensCalibration calibration{lens.DegPerPxPan(), lens.DegPerPxTilt()};
   std::unique_ptr<Controller> controller =
-      MakeController(ToString(settings_.controller.kind), MakeGains(settings_.controller),
+      MakeController(ToString(settings_->controller.kind), MakeGains(settings_->controller),
                      calibration, options_.predictive, &error);
   if (!controller) throw std::runtime_error("controller: " + error);
   strategy_ = std::move(strategy);
@@ -158,16 +159,16 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
         slice_.load());
   }
   if (pending.settings) {
-    rebuild = !SameLoop(settings_, *pending.settings);
-    settings_ = *pending.settings;
-    slice_ = std::clamp(slice_.load(), 1, settings_.search.slices);
+    rebuild = !SameLoop(*settings_, *pending.settings);
+    settings_ = std::move(pending.settings);
+    slice_ = std::clamp(slice_.load(), 1, settings_->search.slices);
   }
   if (pending.slice || pending.mode) resume_.reset();  // the operator decides instead
   if (pending.slice) {
     // Picking a slice means fixating on it (the operator confirms SSP's choice or overrides
     // it): a fixation in progress keeps its reference frame and moves to the new patch; any
     // other mode hands over to fixate.
-    slice_ = std::clamp(*pending.slice, 1, settings_.search.slices);
+    slice_ = std::clamp(*pending.slice, 1, settings_->search.slices);
     rebuild = true;
     const AgentMode now = mode_;
     if (!pending.mode && now != AgentMode::kFixate && now != AgentMode::kFollow) {
@@ -199,7 +200,7 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
 }
 
 cv::Rect ModeRunner::SlicePatchRect(cv::Size frame) const {
-  return SlicePatch(frame, settings_.search.slices, slice_, settings_.search.patch_px);
+  return SlicePatch(frame, settings_->search.slices, slice_, settings_->search.patch_px);
 }
 
 void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
@@ -223,7 +224,7 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
   const auto needs_plane = mode == AgentMode::kSsp || mode == AgentMode::kPss ||
                            mode == AgentMode::kCalibrate || mode == AgentMode::kRecordFreeSwing;
   const cv::Mat plane =
-      needs_plane ? ExtractChannel(frame.image, settings_.search.channel) : cv::Mat();
+      needs_plane ? ExtractChannel(frame.image, settings_->search.channel) : cv::Mat();
   switch (mode) {
     case AgentMode::kIdle:
       reference_frame_.release();
@@ -238,12 +239,12 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
     case AgentMode::kSsp: {
       reference_frame_.release();
       SliceSelectionOptions o;
-      o.slice_count = settings_.search.slices;
-      o.patch_size = settings_.search.patch_px;
-      o.sampling = settings_.search.sampling;
-      o.search = MakeSearchOptions(settings_.search);
-      o.hysteresis_px = settings_.search.dc_hysteresis_px;
-      o.score = settings_.search.slice_score;
+      o.slice_count = settings_->search.slices;
+      o.patch_size = settings_->search.patch_px;
+      o.sampling = settings_->search.sampling;
+      o.search = MakeSearchOptions(settings_->search);
+      o.hysteresis_px = settings_->search.dc_hysteresis_px;
+      o.score = settings_->search.slice_score;
       run_strategy_ = strategy_;
       slice_run_.emplace(plane, *run_strategy_, o);
       break;
@@ -255,22 +256,22 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
       for (const int size : kPatchSizeCandidates) {
         if (size <= std::min(plane.cols, plane.rows)) o.sizes.push_back(size);
       }
-      o.sampling = settings_.search.sampling;
-      o.search = MakeSearchOptions(settings_.search);
+      o.sampling = settings_->search.sampling;
+      o.search = MakeSearchOptions(settings_->search);
       run_strategy_ = strategy_;
       pss_run_.emplace(plane, *run_strategy_, o);
       break;
     }
     case AgentMode::kCalibrate: {
       reference_frame_.release();
-      const LensProfile& lens = settings_.active_lens();
+      const LensProfile& lens = settings_->active_lens();
       CalibrationRunOptions o;
       o.span_deg = kCalibrationSpanPx * std::max(lens.DegPerPxPan(), lens.DegPerPxTilt());
       o.step_deg = o.span_deg / kCalibrationStepsPerSide;
       o.settle_frames = options_.actuation_delay_frames + 1;
       o.patch = SlicePatchRect(plane.size());
-      o.sampling = settings_.search.sampling;
-      o.search = MakeSearchOptions(settings_.search);
+      o.sampling = settings_->search.sampling;
+      o.search = MakeSearchOptions(settings_->search);
       o.park = current;
       run_strategy_ = strategy_;
       calibration_.emplace(o, *run_strategy_);
@@ -283,7 +284,7 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
       }
       previous_plane_ = plane;
       recording_samples_.emplace(std::vector<cv::Rect>{SlicePatchRect(plane.size())},
-                                 settings_.search.sampling);
+                                 settings_->search.sampling);
       break;
   }
   spdlog::info("mode {}{}", ToString(mode),
@@ -303,7 +304,7 @@ FrameOutcome ModeRunner::Hold(AgentMode mode) const {
   outcome.step.targets = hold_;
   outcome.mode = mode;
   outcome.slice = slice_;
-  outcome.slice_count = settings_.search.slices;
+  outcome.slice_count = settings_->search.slices;
   return outcome;
 }
 
@@ -318,13 +319,13 @@ FrameOutcome ModeRunner::Process(const CapturedFrame& frame, const ServoTargets&
     case AgentMode::kFollow:
       return Fixate(frame, current, dt_s);
     case AgentMode::kSsp:
-      return SelectSlice(ExtractChannel(frame.image, settings_.search.channel), frame.index);
+      return SelectSlice(ExtractChannel(frame.image, settings_->search.channel), frame.index);
     case AgentMode::kPss:
-      return SelectPatchSize(ExtractChannel(frame.image, settings_.search.channel), frame.index);
+      return SelectPatchSize(ExtractChannel(frame.image, settings_->search.channel), frame.index);
     case AgentMode::kCalibrate:
-      return Calibrate(ExtractChannel(frame.image, settings_.search.channel));
+      return Calibrate(ExtractChannel(frame.image, settings_->search.channel));
     case AgentMode::kRecordFreeSwing:
-      return RecordFreeSwing(ExtractChannel(frame.image, settings_.search.channel), frame);
+      return RecordFreeSwing(ExtractChannel(frame.image, settings_->search.channel), frame);
   }
   return Hold(mode_);
 }
@@ -348,7 +349,7 @@ FrameOutcome ModeRunner::Fixate(const CapturedFrame& frame, const ServoTargets& 
   }
   outcome.mode = mode_;
   outcome.slice = slice_;
-  outcome.slice_count = settings_.search.slices;
+  outcome.slice_count = settings_->search.slices;
   outcome.patch = loop_->patch();
   if (mode_ == AgentMode::kFixate) outcome.reference_frame = reference_index_;
   return outcome;
@@ -437,10 +438,10 @@ FrameOutcome ModeRunner::SelectSlice(const cv::Mat& plane, std::uint64_t index) 
     const SwingProgress progress = ProgressOf(used, done);
     const SliceSelection selection = slice_run_->Result(progress.deadline_reached);
     SliceReportContext context;
-    context.score = settings_.search.slice_score;
-    context.hysteresis_px = settings_.search.dc_hysteresis_px;
-    context.patch_size_px = settings_.search.patch_px;
-    context.strategy = settings_.search.strategy;
+    context.score = settings_->search.slice_score;
+    context.hysteresis_px = settings_->search.dc_hysteresis_px;
+    context.patch_size_px = settings_->search.patch_px;
+    context.strategy = settings_->search.strategy;
     events_.OnSliceReport(MakeSliceReport(selection, context, progress));
     if (done) {
       // The recommended slice becomes the one in use; the operator confirms it (or picks
@@ -491,7 +492,7 @@ FrameOutcome ModeRunner::SelectPatchSize(const cv::Mat& plane, std::uint64_t ind
 FrameOutcome ModeRunner::Calibrate(const cv::Mat& plane) {
   FrameOutcome outcome = Hold(AgentMode::kCalibrate);
   outcome.step.targets = calibration_->Step(plane);
-  const std::string& lens = settings_.lens;
+  const std::string lens = settings_->lens;  // a copy: settings_ is replaced below
   if (!calibration_->finished()) {
     if (calibration_->moves_done() != calibration_progress_) {
       calibration_progress_ = calibration_->moves_done();
@@ -515,9 +516,9 @@ FrameOutcome ModeRunner::Calibrate(const cv::Mat& plane) {
     const LensCalibration fitted = LensCalibration::FromCalibrationMoves(*pan, *tilt);
     std::string error;
     if (fitted.IsValid(&error)) {
-      for (LensProfile& profile : settings_.lenses) {
-        if (profile.name == lens) profile.ApplyCalibration(fitted);
-      }
+      auto calibrated = std::make_shared<AgentConfig>(*settings_);
+      calibrated->ApplyLensCalibration(lens, fitted);
+      settings_ = std::move(calibrated);
       loop_->SetCalibration(fitted);
       applied = fitted;
       spdlog::info(
@@ -542,14 +543,14 @@ FrameOutcome ModeRunner::RecordFreeSwing(const cv::Mat& plane, const CapturedFra
     const SearchStrategy& strategy = *strategy_;
     recording_.emplace_back(frame.capture_time_us,
                             MeasureDisplacement(previous_plane_, plane, *recording_samples_,
-                                                strategy, MakeSearchOptions(settings_.search)));
+                                                strategy, MakeSearchOptions(settings_->search)));
     previous_plane_ = plane;
   }
   if (!SwingDeadlineReached(frame.index)) return Hold(AgentMode::kRecordFreeSwing);
 
   std::ostringstream csv;
-  csv << "# kapfix free swing: slice " << slice_ << " of " << settings_.search.slices << ", patch "
-      << settings_.search.patch_px << " px, axis " << ToString(settings_.search.axis)
+  csv << "# kapfix free swing: slice " << slice_ << " of " << settings_->search.slices << ", patch "
+      << settings_->search.patch_px << " px, axis " << ToString(settings_->search.axis)
       << "\ncapture_time_us,displacement_px\n";
   for (const auto& [time_us, displacement] : recording_) {
     csv << time_us << ',' << displacement << '\n';

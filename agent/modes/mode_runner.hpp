@@ -38,7 +38,11 @@ class ModeRunner : public FrameProcessor {
  public:
   // `settings` must be IsValid. Throws std::runtime_error when its strategy or controller
   // cannot be built.
-  ModeRunner(const AgentConfig& settings, ModeRunnerOptions options, ModeEvents& events);
+  // `settings`: the owner's immutable snapshot (StateKeeper::settings()), held, not copied.
+  ModeRunner(std::shared_ptr<const AgentConfig> settings, ModeRunnerOptions options,
+             ModeEvents& events);
+  ModeRunner(const AgentConfig& settings, ModeRunnerOptions options, ModeEvents& events)
+      : ModeRunner(std::make_shared<const AgentConfig>(settings), std::move(options), events) {}
 
   FrameOutcome Process(const CapturedFrame& frame, const ServoTargets& current,
                        double dt_s) override;
@@ -46,7 +50,11 @@ class ModeRunner : public FrameProcessor {
   // Any thread; applied before the next frame. A later request of the same kind replaces an
   // earlier one not yet applied.
   void RequestMode(AgentMode mode, std::optional<SwingDeadline> deadline = std::nullopt);
-  void RequestSettings(const AgentConfig& settings);  // must be IsValid
+  // The owner's new snapshot (must be IsValid).
+  void RequestSettings(std::shared_ptr<const AgentConfig> settings);
+  void RequestSettings(const AgentConfig& settings) {
+    RequestSettings(std::make_shared<const AgentConfig>(settings));
+  }
   // [1..slice_count] fixate on this slice: the current fixation moves to it, any other mode
   // (SSP finished, idle) switches to fixate.
   void RequestSlice(int slice);
@@ -64,7 +72,7 @@ class ModeRunner : public FrameProcessor {
  private:
   struct Pending {
     std::optional<std::pair<AgentMode, SwingDeadline>> mode;
-    std::optional<AgentConfig> settings;
+    std::shared_ptr<const AgentConfig> settings;  // null: no change
     std::optional<int> slice;
     std::optional<std::pair<cv::Mat, int>> resume;  // reference frame, slice
   };
@@ -108,8 +116,9 @@ class ModeRunner : public FrameProcessor {
   Pending pending_;
   bool started_ = false;
 
-  // Control thread only.
-  AgentConfig settings_;
+  // Control thread only. The owner's snapshot, never changed in place: a finished
+  // calibration makes a new one the same way the owner does (ApplyLensCalibration).
+  std::shared_ptr<const AgentConfig> settings_;
   std::shared_ptr<const SearchStrategy> strategy_;
   // The strategy a selection run or calibration was started with: a settings change during
   // the run replaces strategy_, not this one.

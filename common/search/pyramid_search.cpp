@@ -241,6 +241,9 @@ const std::vector<std::pair<int, std::int64_t>>& Profile(const ScoreMap& scored,
 }
 
 template <typename T, int kChannels = 1>
+// Named exception to the cognitive-complexity check: the coarse-to-fine search (SPEC §2.3)
+// kept in one piece, its levels and its cross-axis refinement side by side.
+// NOLINTNEXTLINE(readability-function-cognitive-complexity)
 SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
                            const SearchOptions& options, int levels) {
   SearchResult result;

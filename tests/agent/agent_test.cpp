@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "agent/config_file/agent_config_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "tests/link/link_test_support.hpp"
 

@@ -43,8 +43,9 @@ constexpr qint64 kResyncMs = 2000;         // issue 5
 std::string WriteConfig() {
   const auto path = std::filesystem::temp_directory_path() /
                     ("kapfix_station_link_loss_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(path) << R"({"search": {"axis": "both", "swing_frames": 45},
-                             "controller": {"kp": 1.0}, "photos": {"interval_s": 1}})";
+  std::ofstream(path) << R"({"search": {"swing_frames": 45},
+                             "settings": {"search": {"axis": "AXIS_BOTH"}, "gains": {"p": 1.0},
+                                          "photo_interval_s": 1}})";
   return path.string();
 }
 

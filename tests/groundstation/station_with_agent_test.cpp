@@ -43,8 +43,8 @@ constexpr qint64 kStaleShownMs = 3500;  // [ms] issue 14: a dead agent is seen w
 std::string WriteConfig() {
   const auto path = std::filesystem::temp_directory_path() /
                     ("kapfix_station_agent_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(path) << R"({"search": {"axis": "both", "swing_frames": 45},
-                             "controller": {"kp": 1.0}})";
+  std::ofstream(path) << R"({"search": {"swing_frames": 45},
+                             "settings": {"search": {"axis": "AXIS_BOTH"}, "gains": {"p": 1.0}}})";
   return path.string();
 }
 

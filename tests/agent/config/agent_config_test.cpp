@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "agent/config_file/agent_config_file.hpp"
 #include "agent/server/command_validator.hpp"
 
 namespace kapfix::agent {
@@ -95,16 +96,17 @@ TEST_F(AgentConfigFileTest, BadJsonNamesTheFileAndTheLine) {
 
 TEST_F(AgentConfigFileTest, OutOfRangeValueNamesTheField) {
   const std::string error = LoadError(R"({"camera": {"fps": 0}})");
-  EXPECT_EQ(error, dir_ + "/agent.json: camera.fps: must be in (0, 1000], got 0.000000");
+  EXPECT_EQ(error, dir_ + "/agent.json:1: camera.fps: must be in (0, 1000], got 0.000000");
 }
 
 // Issue 11: the config loader and the command server name the range in the same words (both
 // from the settings schema), and issue 15's tiny rate limit is refused by both.
 TEST_F(AgentConfigFileTest, AnOutOfRangeSettingGetsTheCommandServersReason) {
-  const std::string error = LoadError(R"({"controller": {"max_rate_deg_per_s": 1e-45}})");
-  EXPECT_EQ(
-      error,
-      dir_ + "/agent.json: controller.max_rate_deg_per_s = 1e-45: must be in [1, 1000] deg/s");
+  const std::string error =
+      LoadError(R"({"settings": {"gains": {"rate_limit_deg_per_s": 1e-45}}})");
+  EXPECT_EQ(error, dir_ +
+                       "/agent.json:1: settings.gains.rate_limit_deg_per_s = 1e-45: must be in "
+                       "[1, 1000] deg/s");
   kapfix::v1::Command command;
   command.mutable_set_gains()->set_rate_limit_deg_per_s(1e-45F);
   const auto reply = CommandValidator().Validate(command, kapfix::v1::AgentState());
@@ -113,8 +115,8 @@ TEST_F(AgentConfigFileTest, AnOutOfRangeSettingGetsTheCommandServersReason) {
 
 // The integral gain had two ranges ([0, 100] for commands, 0…10 in the config).
 TEST_F(AgentConfigFileTest, TheIntegralGainHasTheCommandsRange) {
-  EXPECT_EQ(LoadError(R"({"controller": {"ki": 11}})"),
-            dir_ + "/agent.json: controller.ki = 11: must be in [0, 10] 1/s");
+  EXPECT_EQ(LoadError(R"({"settings": {"gains": {"i": 11}}})"),
+            dir_ + "/agent.json:1: settings.gains.i = 11: must be in [0, 10] 1/s");
   kapfix::v1::Command command;
   command.mutable_set_gains()->set_i(11);
   EXPECT_EQ(CommandValidator().Validate(command, kapfix::v1::AgentState()).reason(),
@@ -140,19 +142,24 @@ TEST_F(AgentConfigFileTest, UnknownEnumValueListsTheChoices) {
 
 TEST_F(AgentConfigFileTest, ChannelIsGreenOrTheSumOfChannels) {
   // The settings message cannot carry the per-channel rgb of kapfix-analyze: refused by name.
-  const std::string error = LoadError(R"({"search": {"channel": "rgb"}})");
-  EXPECT_NE(error.find("search.channel: unknown value 'rgb' (green or rgb-sum"), std::string::npos)
+  const std::string error = LoadError(R"({"settings": {"search": {"channel": "CHANNEL_RGB"}}})");
+  EXPECT_NE(error.find("settings.search.channel: unknown value \"CHANNEL_RGB\" "
+                       "(CHANNEL_UNSPECIFIED, CHANNEL_GREEN, CHANNEL_RGB_SUM)"),
+            std::string::npos)
       << error;
   AgentConfig config;
   std::string why;
-  ASSERT_TRUE(LoadAgentConfig(Write(R"({"search": {"channel": "rgb-sum"}})"), &config, &why))
+  ASSERT_TRUE(LoadAgentConfig(Write(R"({"settings": {"search": {"channel": "CHANNEL_RGB_SUM"}}})"),
+                              &config, &why))
       << why;
   EXPECT_EQ(config.search.channel, ColorChannel::kRgbSum);
 }
 
 TEST_F(AgentConfigFileTest, WrongTypeIsAnError) {
-  const std::string error = LoadError(R"({"video": {"quality": "high"}})");
-  EXPECT_NE(error.find("video.quality: must be an integer"), std::string::npos) << error;
+  const std::string error = LoadError(R"({"settings": {"video": {"jpeg_quality": "high"}}})");
+  EXPECT_NE(error.find("settings.video.jpeg_quality: must be a whole number ≥ 0, got \"high\""),
+            std::string::npos)
+      << error;
 }
 
 TEST_F(AgentConfigFileTest, ServoLimitOutsideItsPulseRangeIsAnError) {
@@ -168,8 +175,11 @@ TEST_F(AgentConfigFileTest, ParkOutsideTheLimitsIsAnError) {
 }
 
 TEST_F(AgentConfigFileTest, LensMustNameAProfile) {
-  const std::string error = LoadError(R"({"lens": "8mm"})");
-  EXPECT_EQ(error, dir_ + "/agent.json: lens: no lens profile named '8mm'");
+  const std::string error = LoadError(R"({"settings": {"lens": {"name": "8mm"}}})");
+  // As a set_lens command: a name with no profile starts a new one, which needs its optics.
+  EXPECT_EQ(error, dir_ +
+                       "/agent.json: lenses[1]: lens '8mm': give either deg_per_px_pan and "
+                       "deg_per_px_tilt, or focal_mm and pixel_pitch_um");
 }
 
 TEST_F(AgentConfigFileTest, EmptyLensListIsAnError) {
@@ -180,18 +190,20 @@ TEST_F(AgentConfigFileTest, EmptyLensListIsAnError) {
 TEST_F(AgentConfigFileTest, DuplicateLensNamesAreAnError) {
   const std::string error = LoadError(
       R"({"lenses": [{"name": "a", "focal_mm": 6, "pixel_pitch_um": 5},
-                     {"name": "a", "focal_mm": 4, "pixel_pitch_um": 5}], "lens": "a"})");
+                     {"name": "a", "focal_mm": 4, "pixel_pitch_um": 5}]})");
   EXPECT_NE(error.find("used twice"), std::string::npos) << error;
 }
 
 TEST_F(AgentConfigFileTest, BadSamplingNamesTheField) {
-  const std::string error = LoadError(R"({"search": {"sampling": "random:2"}})");
-  EXPECT_NE(error.find("search.sampling:"), std::string::npos) << error;
+  const std::string error = LoadError(R"({"settings": {"search": {"random_fraction": 2}}})");
+  EXPECT_NE(error.find("settings.search.random_fraction = 2: must be in [0.01, 1]"),
+            std::string::npos)
+      << error;
 }
 
 TEST_F(AgentConfigFileTest, PatchLargerThanTheFrameIsAnError) {
-  const std::string error =
-      LoadError(R"({"camera": {"width": 320, "height": 240}, "search": {"patch_px": 300}})");
+  const std::string error = LoadError(R"({"camera": {"width": 320, "height": 240},
+                    "settings": {"search": {"patch_size_px": 300}}})");
   EXPECT_NE(error.find("search.patch_px"), std::string::npos) << error;
 }
 
@@ -243,7 +255,9 @@ TEST_F(AgentConfigFileTest, I2cAddressMayBeAHexString) {
 TEST_F(AgentConfigFileTest, NullGainLeavesTheCameraGain) {
   AgentConfig config;
   std::string error;
-  ASSERT_TRUE(LoadAgentConfig(Write(R"({"camera": {"gain_db": null}})"), &config, &error)) << error;
+  ASSERT_TRUE(
+      LoadAgentConfig(Write(R"({"settings": {"camera": {"gain_db": null}}})"), &config, &error))
+      << error;
   EXPECT_FALSE(config.camera.gain_db.has_value());
 }
 
