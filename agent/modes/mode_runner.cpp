@@ -149,7 +149,7 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
   }
   bool rebuild = false;
   if (pending.resume) {
-    slice_ = std::clamp(pending.resume->second, 1, settings_.search.slices);
+    slice_ = std::clamp(pending.resume->second, 1, settings_->search.slices);
     resume_ =
         Resume{.reference_frame = std::move(pending.resume->first), .frames_left = kResumeFrames};
     hold_ = current;  // no servo moves until the view is found
@@ -181,7 +181,7 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     if (rebuild) {
       Rebuild();
     } else if (pending.settings && loop_) {
-      loop_->SetGains(MakeGains(settings_.controller));  // bumpless: the controller keeps state
+      loop_->SetGains(MakeGains(settings_->controller));  // bumpless: the controller keeps state
     }
     if (pending.mode) Enter(pending.mode->first, pending.mode->second, frame, current);
   } catch (const std::exception& e) {
@@ -361,13 +361,13 @@ FrameOutcome ModeRunner::ResumeSearch(const CapturedFrame& frame, const ServoTar
   outcome.step.lock_lost = true;
   std::string error;
   const std::unique_ptr<SearchStrategy> strategy = MakeSearchStrategy(kResumeStrategy, &error);
-  const cv::Mat stored = ExtractChannel(resume_->reference_frame, settings_.search.channel);
-  const cv::Mat plane = ExtractChannel(frame.image, settings_.search.channel);
+  const cv::Mat stored = ExtractChannel(resume_->reference_frame, settings_->search.channel);
+  const cv::Mat plane = ExtractChannel(frame.image, settings_->search.channel);
   const FixationOptions fixation = MakeFixationOptions(AgentMode::kFixate);
   if (strategy && stored.size() == plane.size() && stored.type() == plane.type()) {
     const cv::Rect patch = SlicePatchRect(stored.size());
-    const ReferencePatch reference(stored, SampleSet({patch}, settings_.search.sampling));
-    SearchOptions wide = MakeSearchOptions(settings_.search);
+    const ReferencePatch reference(stored, SampleSet({patch}, settings_->search.sampling));
+    SearchOptions wide = MakeSearchOptions(settings_->search);
     wide.axis = SearchAxis::kBoth;  // wherever the restart left the view
     wide.range = std::max(plane.cols, plane.rows);
     wide.origin = {0, 0};

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "agent/config/agent_config.hpp"
+#include "agent/config_file/agent_config_file.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
@@ -40,8 +41,8 @@ TEST(PhotoConfigTest, ConfigFileReadsTheShutterKeys) {
   TempDir dir;
   AgentConfig config;
   ASSERT_EQ(Load(dir,
-                 R"({"photos": {"shutter": "best-phase", "window_s": 2.5, "window_cap_s": 4,
-                     "exposure_ms": 20, "camera": "gphoto2"}})",
+                 R"({"settings": {"photo": {"shutter": "SHUTTER_BEST_PHASE", "window_s": 2.5,
+                     "window_cap_s": 4, "exposure_ms": 20, "camera": "PHOTO_CAMERA_GPHOTO2"}}})",
                  &config),
             "");
   EXPECT_EQ(config.photos.shutter, ShutterMode::kBestPhase);
@@ -54,8 +55,9 @@ TEST(PhotoConfigTest, ConfigFileReadsTheShutterKeys) {
 TEST(PhotoConfigTest, UnknownShutterWordListsTheChoices) {
   TempDir dir;
   AgentConfig config;
-  const std::string error = Load(dir, R"({"photos": {"shutter": "best"}})", &config);
-  EXPECT_NE(error.find("photos.shutter: unknown value 'best' (interval or best-phase)"),
+  const std::string error = Load(dir, R"({"settings": {"photo": {"shutter": "best"}}})", &config);
+  EXPECT_NE(error.find(":1: settings.photo.shutter: unknown value \"best\" (SHUTTER_UNSPECIFIED, "
+                       "SHUTTER_INTERVAL, SHUTTER_BEST_PHASE)"),
             std::string::npos)
       << error;
 }
@@ -63,8 +65,9 @@ TEST(PhotoConfigTest, UnknownShutterWordListsTheChoices) {
 TEST(PhotoConfigTest, WrongTypeOfExposureIsAnError) {
   TempDir dir;
   AgentConfig config;
-  const std::string error = Load(dir, R"({"photos": {"exposure_ms": "10"}})", &config);
-  EXPECT_NE(error.find("photos.exposure_ms: must be a number"), std::string::npos) << error;
+  const std::string error = Load(dir, R"({"settings": {"photo": {"exposure_ms": "10"}}})", &config);
+  EXPECT_NE(error.find(":1: settings.photo.exposure_ms: must be a number"), std::string::npos)
+      << error;
 }
 
 TEST(PhotoConfigTest, WindowLongerThanTheCapIsRefused) {
@@ -91,8 +94,8 @@ TEST(PhotoConfigTest, WindowBeyondTheSchemaIsRefusedFromTheFile) {
   TempDir dir;
   AgentConfig config;
   const std::string error =
-      Load(dir, R"({"photos": {"window_s": 40, "window_cap_s": 30}})", &config);
-  EXPECT_NE(error.find("photos.window_s = 40: must be"), std::string::npos) << error;
+      Load(dir, R"({"settings": {"photo": {"window_s": 40, "window_cap_s": 30}}})", &config);
+  EXPECT_NE(error.find("window_s = 40"), std::string::npos) << error;
 }
 
 TEST(PhotoConfigTest, ShutterWordsReadBack) {
