@@ -131,7 +131,7 @@ TEST_P(ProtoRoundTripTest, EveryFieldSurvivesEncodeAndDecode) {
   const std::unique_ptr<Message> sent = NewMessageForTopic(GetParam());
   ASSERT_NE(sent, nullptr);
   FillEveryField(sent.get());
-  Stamp(MutableHeader(sent.get()), "kite-1", 42);
+  Stamp(MutableHeader(sent.get()), "kite-1", 42, 0x5eed);  // an agent: with a boot id
   std::vector<std::string> unset;
   CollectUnset(*sent, "", &unset);
   ASSERT_TRUE(unset.empty()) << "fill missed " << ::testing::PrintToString(unset);
