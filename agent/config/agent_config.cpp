@@ -163,6 +163,10 @@ bool AgentConfig::IsValid(std::string* error) const {
   }
   if (!simulation.IsValid(error) || !camera.IsValid(error) || !servo.IsValid(error)) return false;
   if (lenses.empty()) return fail("lenses: at least one lens profile is needed");
+  if (lenses.size() > kMaxLensProfiles) {
+    return fail("lenses: " + std::to_string(lenses.size()) + " lens profiles, at most " +
+                std::to_string(kMaxLensProfiles) + " (reuse a name to change a profile)");
+  }
   std::set<std::string> names;
   for (std::size_t i = 0; i < lenses.size(); ++i) {
     std::string reason;

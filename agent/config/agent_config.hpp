@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ namespace kapfix::agent {
 // resources/README.md; examples: resources/kite.json, resources/boat.json. A default-built
 // AgentConfig is valid and runs everything in simulation.
 struct AgentConfig {
+  // [count] lens profiles at most: each set_lens with a new name adds one, and every state
+  // message carries them all, so a peer must not be able to grow them without bound.
+  static constexpr std::size_t kMaxLensProfiles = 64;
+
   std::string agent_id = "kapfix";  // names the agent in every message; [A-Za-z0-9._-]{1,64}
   SimulationConfig simulation;
   CameraConfig camera;

@@ -108,6 +108,26 @@ TEST(SettingsMessagesTest, LensByOpticsCreatesTheProfileAndSelectsIt) {
   EXPECT_NE(FindLens(config, "default"), nullptr);  // the others stay
 }
 
+TEST(SettingsMessagesTest, LensProfilesStopAtTheirBoundAndTheRefusalSaysSo) {
+  AgentConfig config;
+  std::string error;
+  for (std::size_t i = config.lenses.size(); i <= AgentConfig::kMaxLensProfiles; ++i) {
+    kapfix::v1::Command command;
+    kapfix::v1::LensProfile* lens = command.mutable_set_lens();
+    lens->set_name("lens-" + std::to_string(i));
+    lens->set_focal_length_mm(6.0F);
+    lens->set_pixel_pitch_um(10.6F);
+    const bool applied = ApplySettingsCommand(command, &config, &error);
+    if (i < AgentConfig::kMaxLensProfiles) {
+      ASSERT_TRUE(applied) << i << ": " << error;
+    } else {
+      EXPECT_FALSE(applied);
+      EXPECT_NE(error.find("at most 64"), std::string::npos) << error;
+    }
+  }
+  EXPECT_EQ(config.lenses.size(), AgentConfig::kMaxLensProfiles);  // the refused one is not kept
+}
+
 TEST(SettingsMessagesTest, LensByOpticsReplacesTheProfilesDegreesPerPixel) {
   AgentConfig config;  // "default": 0.1 deg/px given directly
   kapfix::v1::Command command;
