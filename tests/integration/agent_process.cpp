@@ -21,15 +21,28 @@ AgentProcess::AgentProcess(const std::vector<std::string>& extra) {
   command.Release();
   stream.Release();
 
+  extra_ = extra;
+  Start(extra);
+}
+
+void AgentProcess::Start(const std::vector<std::string>& extra) {
   std::vector<std::string> args = {
       KAPFIX_AGENT,        "--sim",
       "--scene",           std::string(KAPFIX_OPENCV_DATA_DIR) + "/aero1.jpg",
-      "--command-address", "tcp://127.0.0.1:" + std::to_string(command_port_),
-      "--stream-address",  "tcp://127.0.0.1:" + std::to_string(stream_port_),
+      "--command-address", command_endpoint(),
+      "--stream-address",  stream_endpoint(),
       "--photos",          photos().string(),
-      "--state-dir",       (folder_ / "state").string()};
+      "--state-dir",       state_dir().string()};
   args.insert(args.end(), extra.begin(), extra.end());
-  process_ = std::make_unique<ChildProcess>(args, folder_ / "agent.out", folder_ / "agent.err");
+  ++starts_;
+  const std::string suffix = starts_ == 1 ? "" : "." + std::to_string(starts_);
+  process_ = std::make_unique<ChildProcess>(args, folder_ / ("agent" + suffix + ".out"),
+                                            ErrorLog(starts_));
+}
+
+std::filesystem::path AgentProcess::ErrorLog(int start) const {
+  return folder_ /
+         (start == 1 ? std::string("agent.err") : "agent." + std::to_string(start) + ".err");
 }
 
 AgentProcess::~AgentProcess() {
@@ -44,7 +57,22 @@ pid_t AgentProcess::pid() const { return process_->pid(); }
 
 int AgentProcess::Stop() { return process_->Stop(SIGTERM); }
 
-std::string AgentProcess::log() const { return ReadFile(folder_ / "agent.err"); }
+void AgentProcess::Kill() { process_->Stop(SIGKILL); }
+
+void AgentProcess::Restart(const std::vector<std::string>& extra) {
+  if (process_->running()) throw std::logic_error("restart of an agent that still runs");
+  // The same ports: the new agent binds them again (ZeroMQ listens with SO_REUSEADDR, so the
+  // old agent's connections in TIME_WAIT do not stand in the way).
+  Start(extra);
+}
+
+std::string AgentProcess::log() const {
+  std::string text = ReadFile(ErrorLog(1));
+  for (int start = 2; start <= starts_; ++start) {
+    text += "--- start " + std::to_string(start) + " ---\n" + ReadFile(ErrorLog(start));
+  }
+  return text;
+}
 
 std::vector<std::string> AgentProcess::CtlCommand(const std::vector<std::string>& args) const {
   std::vector<std::string> command = {KAPFIX_CTL,
