@@ -77,17 +77,10 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
 }
 
 kapfix::v1::Reply CommandExecutor::Execute(const kapfix::v1::Command& command) {
+  if (IsSettingsCommand(command)) return ApplySettings(command);
   switch (command.command_case()) {
     case kapfix::v1::Command::kSetMode:
       return SetMode(command.set_mode());
-    case kapfix::v1::Command::kSetGains:
-    case kapfix::v1::Command::kSetSearch:
-    case kapfix::v1::Command::kSetCamera:
-    case kapfix::v1::Command::kSetLens:
-    case kapfix::v1::Command::kSetVideo:
-    case kapfix::v1::Command::kSetPhotoIntervalS:
-    case kapfix::v1::Command::kSetPhoto:
-      return ApplySettings(command);
     case kapfix::v1::Command::kSelectSlice:
       targets_.modes.RequestSlice(static_cast<int>(command.select_slice()));
       return Ok();

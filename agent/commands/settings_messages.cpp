@@ -253,4 +253,19 @@ bool ApplySettingsCommand(const kapfix::v1::Command& command, AgentConfig* confi
   return true;
 }
 
+bool IsSettingsCommand(const kapfix::v1::Command& command) {
+  switch (command.command_case()) {
+    case kapfix::v1::Command::kSetGains:
+    case kapfix::v1::Command::kSetSearch:
+    case kapfix::v1::Command::kSetCamera:
+    case kapfix::v1::Command::kSetLens:
+    case kapfix::v1::Command::kSetVideo:
+    case kapfix::v1::Command::kSetPhotoIntervalS:
+    case kapfix::v1::Command::kSetPhoto:
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace kapfix::agent

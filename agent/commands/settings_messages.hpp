@@ -14,6 +14,9 @@ namespace kapfix::agent {
 // photo settings, video) from `config`; every field present.
 void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state);
 
+// Whether `command` is a settings command, i.e. one ApplySettingsCommand takes.
+bool IsSettingsCommand(const kapfix::v1::Command& command);
+
 // Applies the settings command (set_gains, set_search, set_camera, set_lens, set_video,
 // set_photo_interval_s or set_photo) to `config`: absent fields keep their values (partial
 // update), then the whole config must be IsValid. False with the reason, `config` untouched,

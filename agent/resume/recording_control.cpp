@@ -1,5 +1,7 @@
 #include "agent/resume/recording_control.hpp"
 
+#include "agent/commands/settings_messages.hpp"
+
 namespace kapfix::agent {
 
 RecordingControl::RecordingControl(AgentControl& next, ResumeRecorder& recorder)
@@ -8,19 +10,7 @@ RecordingControl::RecordingControl(AgentControl& next, ResumeRecorder& recorder)
 kapfix::v1::Reply RecordingControl::Execute(const kapfix::v1::Command& command) {
   kapfix::v1::Reply reply = next_.Execute(command);
   if (!reply.ok()) return reply;
-  switch (command.command_case()) {
-    case kapfix::v1::Command::kSetGains:
-    case kapfix::v1::Command::kSetSearch:
-    case kapfix::v1::Command::kSetCamera:
-    case kapfix::v1::Command::kSetLens:
-    case kapfix::v1::Command::kSetVideo:
-    case kapfix::v1::Command::kSetPhotoIntervalS:
-    case kapfix::v1::Command::kSetPhoto:
-      recorder_.OnSettingsApplied(command);
-      break;
-    default:
-      break;
-  }
+  if (IsSettingsCommand(command)) recorder_.OnSettingsApplied(command);
   return reply;
 }
 

@@ -13,6 +13,7 @@
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
+#include "tests/agent/kite_config_in.hpp"
 #include "tests/link/link_test_support.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -21,21 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using kapfix::testing::TempDir;
-
-// resources/kite.json in simulation, with its state and photo folders and link in `base`.
-AgentConfig KiteIn(const fs::path& base) {
-  AgentConfig config;
-  std::string error;
-  EXPECT_TRUE(LoadAgentConfig(std::string(KAPFIX_RESOURCES_DIR) + "/kite.json", &config, &error))
-      << error;
-  config.state_dir = (base / "state").string();
-  config.photos.dir = (base / "photos").string();
-  config.link.command_address = "ipc://" + (base / "cmd").string();
-  config.link.stream_address = "ipc://" + (base / "stream").string();
-  config.link.curve_secret_key_file.clear();
-  config.link.curve_authorized_keys_file.clear();
-  return config;
-}
 
 // An agent flying in simulation, as fast as the machine allows, until it goes.
 class RunningAgent {
@@ -109,7 +95,7 @@ void FlyAndSetGainsAndSlice(const AgentConfig& config) {
 
 TEST(AgentResumeTest, ARestartedAgentFixatesItsSliceAgainWithTheOperatorsGains) {
   TempDir base;
-  const AgentConfig config = KiteIn(base.path());
+  const AgentConfig config = KiteConfigIn(base.path());
   ASSERT_NE(config.controller.kp, 0.6) << "the test needs a configured P other than the operator's";
   FlyAndSetGainsAndSlice(config);
 
@@ -127,7 +113,7 @@ TEST(AgentResumeTest, ARestartedAgentFixatesItsSliceAgainWithTheOperatorsGains) 
 
 TEST(AgentResumeTest, NoResumeStartsFromTheConfiguration) {
   TempDir base;
-  const AgentConfig config = KiteIn(base.path());
+  const AgentConfig config = KiteConfigIn(base.path());
   FlyAndSetGainsAndSlice(config);
 
   RunningAgent fresh(config, Simulated(/*resume=*/false));
@@ -143,7 +129,7 @@ TEST(AgentResumeTest, NoResumeStartsFromTheConfiguration) {
 
 TEST(AgentResumeTest, ACorruptRecordIsSetAsideAndTheAgentStartsFresh) {
   TempDir base;
-  const AgentConfig config = KiteIn(base.path());
+  const AgentConfig config = KiteConfigIn(base.path());
   const fs::path record = fs::path(config.state_dir) / "resume" / "resume.json";
   fs::create_directories(record.parent_path());
   std::ofstream(record) << "{\"format\": 1, \"mode\": \"fixate\", \"sli";  // cut short
@@ -162,7 +148,7 @@ TEST(AgentResumeTest, ACorruptRecordIsSetAsideAndTheAgentStartsFresh) {
 // Every message of one start carries one boot id; the next start another.
 TEST(AgentResumeTest, EachStartHasItsOwnBootIdOnEverythingItSends) {
   TempDir base;
-  const AgentConfig config = KiteIn(base.path());
+  const AgentConfig config = KiteConfigIn(base.path());
   std::uint64_t first = 0;
   {
     RunningAgent running(config, Simulated());

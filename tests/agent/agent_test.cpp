@@ -8,6 +8,7 @@
 
 #include "agent/config_file/agent_config_file.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "tests/agent/kite_config_in.hpp"
 #include "tests/link/link_test_support.hpp"
 
 namespace kapfix::agent {
@@ -15,28 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// resources/kite.json as shipped (its lenses defined by their optics), in simulation, with
-// its own state and photo folders and a private link.
-AgentConfig KiteJsonInTemp(const fs::path& base) {
-  fs::create_directories(base);  // the link's ipc files live there
-  AgentConfig config;
-  std::string error;
-  EXPECT_TRUE(LoadAgentConfig(std::string(KAPFIX_RESOURCES_DIR) + "/kite.json", &config, &error))
-      << error;
-  config.state_dir = (base / "state").string();
-  config.photos.dir = (base / "photos").string();
-  config.link.command_address = "ipc://" + (base / "cmd").string();
-  config.link.stream_address = "ipc://" + (base / "stream").string();
-  config.link.curve_secret_key_file.clear();
-  config.link.curve_authorized_keys_file.clear();
-  return config;
-}
-
 TEST(AgentTest, RestartedWithAStoredCalibrationOfAnOpticalLensItAcceptsSettingsCommands) {
   const fs::path base =
       fs::temp_directory_path() / ("kapfix_agent_restart_" + std::to_string(::getpid()));
   fs::remove_all(base);
-  const AgentConfig config = KiteJsonInTemp(base);
+  const AgentConfig config = KiteConfigIn(base);
   ASSERT_GT(config.active_lens().focal_mm, 0) << "the test needs a lens defined by its optics";
   // What an earlier run's calibration left in the state folder.
   const CalibrationStore store(fs::path(config.state_dir) / "calibration");
@@ -69,7 +53,7 @@ TEST(AgentTest, AStationThatSubscribesLateGetsTheStateWithoutAsking) {
   const fs::path base =
       fs::temp_directory_path() / ("kapfix_agent_late_" + std::to_string(::getpid()));
   fs::remove_all(base);
-  const AgentConfig config = KiteJsonInTemp(base);
+  const AgentConfig config = KiteConfigIn(base);
   Agent agent(config, {.simulate = true, .real_time = false, .frames = 1});
   kapfix::testing::RawSubscriber station(agent.stream_endpoint(), {"heartbeat", "state"});
   ASSERT_TRUE(station.Ready());
