@@ -41,6 +41,9 @@ bool BestPhaseShutterOptions::IsValid(std::string* error) const {
   if (!std::isfinite(frame_period_s) || frame_period_s <= 0) {
     return fail("frame period must be positive, got " + std::to_string(frame_period_s) + " s");
   }
+  if (!std::isfinite(on_target_px) || on_target_px < 0) {
+    return fail("on-target tolerance must be ≥ 0 px, got " + std::to_string(on_target_px));
+  }
   if (!std::isfinite(offset_weight) || offset_weight < 0) {
     return fail("offset weight must be ≥ 0, got " + std::to_string(offset_weight));
   }
@@ -67,7 +70,8 @@ void BestPhaseShutter::Request() {
 
 double BestPhaseShutter::Cost(double speed_px_per_frame, double offset_px) const {
   const double exposure_frames = options_.exposure_ms / 1000.0 / options_.frame_period_s;
-  return speed_px_per_frame * exposure_frames + options_.offset_weight * offset_px;
+  return speed_px_per_frame * exposure_frames +
+         options_.offset_weight * std::max(0.0, offset_px - options_.on_target_px);
 }
 
 double BestPhaseShutter::ExpectedCostOfWaiting(const ShutterFrame& frame, int frames) const {

@@ -19,16 +19,22 @@ struct BestPhaseShutterOptions {
   double window_cap_s = 10;          // [s] longest wait; a longer window_s is refused
   double exposure_ms = 10;           // [ms] exposure the photo is planned for (and blurred over)
   double frame_period_s = 1.0 / 30;  // [s] the camera's frame period
-  // [px of blur per px of offset] the residual offset's weight in a frame's cost against the
-  // view's travel during the exposure: a few pixels off the reference frame barely change a
-  // photo's framing, a pixel of smear shows.
+  // [px] residual offset within which the photo is on target: its framing has not visibly
+  // moved (the station's off-target threshold, a tenth of the thesis' 100 px patch). An
+  // offset inside it is invisible in the photo, so it costs nothing: trading visible smear
+  // for it would make the photo worse.
+  double on_target_px = 10;
+  // [px of blur per px of offset] weight of the offset beyond on_target_px against the view's
+  // travel during the exposure: one pixel of travel (the station's blurred threshold, where
+  // the smear of a point covers two pixels) weighs as much as a whole tolerance (10 px) more
+  // off target.
   double offset_weight = 0.1;
   int scenarios = 64;  // [1] draws of the forecast's error the choice averages over
   std::uint32_t seed = 1;
 
   // Window 0 or 0.1 s…cap, cap 0.5…30 s, exposure 0.01…2000 ms (the settings schema's
-  // ranges, checked by the caller), frame period > 0, weight ≥ 0, 1…4096 scenarios; and
-  // the window not longer than the cap.
+  // ranges, checked by the caller), frame period > 0, tolerance and weight ≥ 0, 1…4096
+  // scenarios; and the window not longer than the cap.
   bool IsValid(std::string* error) const;
 };
 
@@ -46,14 +52,16 @@ struct ShutterShot {
 // The swing-phase shutter (issue 13). A request opens a window (window_s, or one swing
 // period as the forecaster sees it, at most window_cap_s); on each frame in it the shutter
 // either fires or waits. The cost of a frame is its view travel during the exposure plus
-// offset_weight × its residual offset. The frame in hand is measured: the view's speed over
-// it is the change of the measured offset since the frame before, which is exactly the
-// motion its exposure saw. The frames to come are forecast: the forecaster's path plus its
-// measured one-step error, drawn `scenarios` times with a fixed seed. The shutter fires when
-// the frame in hand costs no more than waiting is expected to (backward induction over the
-// window's remaining frames: the last one is taken whatever it costs, each earlier one only
-// if it beats the expected cost of going on). So it decides on the frame itself, never on
-// the one after, and a forecast of a quieter phase ahead makes it wait.
+// offset_weight × its residual offset beyond on_target_px (an on-target offset costs
+// nothing: the photo's framing has not visibly moved, its smear shows). The frame in hand is
+// measured: the view's speed over it is the change of the measured offset since the frame
+// before, which is exactly the motion its exposure saw. The frames to come are forecast: the
+// forecaster's path plus its measured one-step error, drawn `scenarios` times with a fixed
+// seed. The shutter fires when the frame in hand costs no more than waiting is expected to
+// (backward induction over the window's remaining frames: the last one is taken whatever it
+// costs, each earlier one only if it beats the expected cost of going on). So it decides on
+// the frame itself, never on the one after, and a forecast of a quieter phase ahead makes it
+// wait.
 //  - No trained forecaster (or no swing period for a window of one period): fires at once.
 //  - Untrusted frames are never chosen; a window with no trusted frame fires at its end.
 //  - Interval mode: fires on the first frame after the request.

@@ -1,5 +1,6 @@
 #include "common/shutter/swing_view_forecaster.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -40,12 +41,28 @@ SwingViewForecaster::SwingViewForecaster(int error_frames)
 void SwingViewForecaster::Observe(const ShutterFrame& frame) {
   pan_.Add(frame.pan_deg);
   tilt_.Add(frame.tilt_deg);
+  double pan_modulus = 0, tilt_modulus = 0;
+  const auto pan = Ar2PeriodFrames(pan_.coefficients(), kMinResonance, &pan_modulus);
+  const auto tilt = Ar2PeriodFrames(tilt_.coefficients(), kMinResonance, &tilt_modulus);
+  if (pan && (!tilt || pan_modulus >= tilt_modulus)) {
+    period_ = pan;
+  } else if (tilt) {
+    period_ = tilt;
+  }
   if (!frame.trusted) {
     // An untrusted match is no measurement; the predictors bridge a few frames or forget.
     x_.AddMissing();
     y_.AddMissing();
     expected_next_.reset();
+    previous_trusted_ = false;
     return;
+  }
+  offsets_.push_back(frame.offset_px);
+  follows_.push_back(previous_trusted_);
+  previous_trusted_ = true;
+  while (static_cast<int>(offsets_.size()) > error_frames_) {
+    offsets_.pop_front();
+    follows_.pop_front();
   }
   if (expected_next_) {
     errors_.push_back(frame.offset_px - *expected_next_);
@@ -65,8 +82,32 @@ bool SwingViewForecaster::trained() const {
   return x_.has_model() && y_.has_model() && static_cast<int>(errors_.size()) >= kMinErrorSamples;
 }
 
+cv::Point2d SwingViewForecaster::reversion() const {
+  if (offsets_.empty()) return {1, 1};
+  cv::Point2d mean(0, 0);
+  for (const cv::Point2d& o : offsets_) mean += o;
+  mean *= 1.0 / static_cast<double>(offsets_.size());
+  cv::Point2d lagged(0, 0), squares(0, 0);
+  for (std::size_t i = 1; i < offsets_.size(); ++i) {
+    if (!follows_[i]) continue;
+    const cv::Point2d before = offsets_[i - 1] - mean, now = offsets_[i] - mean;
+    lagged += cv::Point2d(before.x * now.x, before.y * now.y);
+    squares += cv::Point2d(before.x * before.x, before.y * before.y);
+  }
+  // No spread to regress on: nothing is known of the reversion, so none is assumed.
+  const auto rate = [](double l, double q) { return q > 0 ? std::clamp(l / q, 0.0, 1.0) : 1.0; };
+  return {rate(lagged.x, squares.x), rate(lagged.y, squares.y)};
+}
+
 cv::Point2d SwingViewForecaster::Forecast(int frames) const {
-  return {x_.Forecast(frames).value_or(0.0), y_.Forecast(frames).value_or(0.0)};
+  const cv::Point2d next(x_.Forecast(1).value_or(0.0), y_.Forecast(1).value_or(0.0));
+  if (frames <= 1 || offsets_.empty()) return next;
+  cv::Point2d mean(0, 0);
+  for (const cv::Point2d& o : offsets_) mean += o;
+  mean *= 1.0 / static_cast<double>(offsets_.size());
+  const cv::Point2d rho = reversion();
+  return {mean.x + std::pow(rho.x, frames - 1) * (next.x - mean.x),
+          mean.y + std::pow(rho.y, frames - 1) * (next.y - mean.y)};
 }
 
 cv::Point2d SwingViewForecaster::error_rms() const {
@@ -80,12 +121,6 @@ cv::Point2d SwingViewForecaster::error_rms() const {
   return {std::sqrt(sx / n), std::sqrt(sy / n)};
 }
 
-std::optional<double> SwingViewForecaster::period_frames() const {
-  double pan_modulus = 0, tilt_modulus = 0;
-  const auto pan = Ar2PeriodFrames(pan_.coefficients(), kMinResonance, &pan_modulus);
-  const auto tilt = Ar2PeriodFrames(tilt_.coefficients(), kMinResonance, &tilt_modulus);
-  if (pan && (!tilt || pan_modulus >= tilt_modulus)) return pan;
-  return tilt;
-}
+std::optional<double> SwingViewForecaster::period_frames() const { return period_; }
 
 }  // namespace kapfix

@@ -80,16 +80,33 @@ TEST(BestPhaseShutterTest, FiresOnTheFrameOfTheQuietPhase) {
   EXPECT_FALSE(fired->second.lock_lost);
 }
 
-TEST(BestPhaseShutterTest, PrefersTheSmallerOffsetAtTheSameSpeed) {
-  // Steady drift of 1 px per frame from −6 px: the speed never changes, the offset is
-  // smallest at frame 6.
-  const auto drift = [](int frame) { return cv::Point2d(frame - 6.0, 0.0); };
+TEST(BestPhaseShutterTest, PrefersAnOnTargetFrameAtTheSameSpeed) {
+  // Steady drift of 1 px per frame from −16 px: the speed never changes, the offset comes
+  // within the 10 px on-target tolerance at frame 6.
+  const auto drift = [](int frame) { return cv::Point2d(frame - 16.0, 0.0); };
   ScriptedForecaster forecaster(drift);
   BestPhaseShutter shutter(forecaster, BestPhase(1.0));
   const auto fired = RunFrames(shutter, drift, 1, 60);
   ASSERT_TRUE(fired);
   EXPECT_EQ(fired->first, 6);
-  EXPECT_NEAR(fired->second.offset_px, 0.0, 1e-9);
+  EXPECT_NEAR(fired->second.offset_px, 10.0, 1e-9);
+}
+
+TEST(BestPhaseShutterTest, AnOnTargetOffsetDoesNotBuySmear) {
+  // Near the reference (±0.25 px) but moving 0.5 px per frame, except frame 11: 8.1 px off,
+  // still on target, and moving 0.1 px. Only the smear shows in the photo, so frame 11 it is
+  // (weighing the whole offset, 0.1 px per px, would take frame 1 at once).
+  const auto path = [](int frame) {
+    if (frame == 10) return cv::Point2d(8.0, 0.0);
+    if (frame == 11) return cv::Point2d(8.1, 0.0);
+    return cv::Point2d(frame % 2 == 0 ? 0.25 : -0.25, 0.0);
+  };
+  ScriptedForecaster forecaster(path);
+  BestPhaseShutter shutter(forecaster, BestPhase(1.0));
+  const auto fired = RunFrames(shutter, path, 1, 60);
+  ASSERT_TRUE(fired);
+  EXPECT_EQ(fired->first, 11);
+  EXPECT_NEAR(fired->second.speed_px_per_frame, 0.1, 1e-9);
 }
 
 TEST(BestPhaseShutterTest, UntrustedLockThroughTheWindowFiresAtItsEnd) {
@@ -167,6 +184,14 @@ TEST(BestPhaseShutterTest, ExposureMustBePositive) {
   std::string error;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("exposure must be positive"), std::string::npos) << error;
+}
+
+TEST(BestPhaseShutterTest, NegativeOnTargetToleranceIsRefused) {
+  BestPhaseShutterOptions options = BestPhase(1);
+  options.on_target_px = -1;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("on-target tolerance"), std::string::npos) << error;
 }
 
 }  // namespace
