@@ -105,7 +105,7 @@ std::vector<double> Negated(std::vector<double> v) {
 
 // Named exception to the function-size check: the benchmark's options and its table, one
 // run from top to bottom.
-// NOLINTNEXTLINE(readability-function-size)
+// NOLINTNEXTLINE(readability-function-size,readability-function-cognitive-complexity)
 int Main(int argc, char** argv) {
   CLI::App app{"kapfix-bench-loop: closed loop over scenes × worlds × controllers × seeds"};
   bool quick = false;

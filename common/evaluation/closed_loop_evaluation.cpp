@@ -77,6 +77,29 @@ ClosedLoopOptions ClosedLoopOptions::ForMotion(SimulatedPlatformOptions::Motion 
   return options;
 }
 
+namespace {
+
+// The online deg/px estimate of the predictive controller (pan axis) against the truth; NaN
+// without a predictive controller.
+void FillCalibrationEstimate(const PredictiveController* predictive, double px_per_deg,
+                             ClosedLoopFigures* figures) {
+  figures->deg_per_px_estimate_ratio = std::numeric_limits<double>::quiet_NaN();
+  figures->deg_per_px_estimate_sigma = std::numeric_limits<double>::quiet_NaN();
+  if (!predictive) return;
+  const DegPerPxEstimator& estimator = predictive->pan_estimator();
+  figures->deg_per_px_estimate_ratio = estimator.estimate_deg_per_px() * px_per_deg;
+  figures->deg_per_px_estimate_sigma = estimator.relative_sigma();
+  figures->deg_per_px_estimate_trusted = estimator.trusted();
+}
+
+// [deg] `target` as far as the servo reaches from `previous` in one command: within `step` of
+// it and within [low, high].
+double ServoReach(double target, double previous, double low, double high, double step) {
+  return std::clamp(std::clamp(target, previous - step, previous + step), low, high);
+}
+
+}  // namespace
+
 ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopOptions& options,
                                      const std::function<void(int, int)>& progress) {
   std::string error;
@@ -119,9 +142,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   // so that the command is what the servo can reach: otherwise the controller's belief
   // (the command) and the servo's true angle part whenever the rate limit bites, and a loop
   // acting on that belief feeds its own error back.
-  const auto limit = [](double target, double previous, double low, double high, double step) {
-    return std::clamp(std::clamp(target, previous - step, previous + step), low, high);
-  };
+  const auto limit = ServoReach;
   const auto command = [&](int frame, const ServoTargets& targets) {
     const ServoTargets previous = commanded.empty() ? initial : commanded.back().second;
     const int frames_since = commanded.empty() ? 1 : frame - commanded.back().first;
@@ -224,15 +245,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.silent_gross_pct = 100.0 * silent_gross / n;
   figures.dropped_pct = 100.0 * dropped / n;
   figures.predicting_pct = 100.0 * predicting / n;
-  figures.deg_per_px_estimate_ratio = nan;
-  figures.deg_per_px_estimate_sigma = nan;
-  if (predictive) {
-    const DegPerPxEstimator& estimator = predictive->pan_estimator();
-    figures.deg_per_px_estimate_ratio =
-        estimator.estimate_deg_per_px() * platform_options.px_per_deg;
-    figures.deg_per_px_estimate_sigma = estimator.relative_sigma();
-    figures.deg_per_px_estimate_trusted = estimator.trusted();
-  }
+  FillCalibrationEstimate(predictive, platform_options.px_per_deg, &figures);
   figures.fps = total_us > 0 ? n / (total_us * 1e-6) : 0.0;
   figures.loop_latency_p50_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 50.0) / 1000.0;
   figures.loop_latency_p99_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 99.0) / 1000.0;
