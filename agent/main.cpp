@@ -18,8 +18,8 @@
 
 #include "agent/agent.hpp"
 #include "agent/config/agent_config.hpp"
-#include "agent/config_file/agent_config_file.hpp"
 #include "agent/config/device_spec.hpp"
+#include "agent/config_file/agent_config_file.hpp"
 #include "agent/photos/photo_quality.hpp"
 #include "agent/pipeline/flight_report.hpp"
 #include "agent/preflight/preflight.hpp"
