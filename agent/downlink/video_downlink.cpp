@@ -36,6 +36,11 @@ void VideoDownlink::SetSettings(const VideoConfig& settings) {
   settings_ = settings;
 }
 
+void VideoDownlink::Flush() {
+  std::unique_lock lock(mutex_);
+  drained_.wait(lock, [this] { return !pending_ && !encoding_; });
+}
+
 void VideoDownlink::OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
                            const TelemetryRecord& record) {
   double fps = 0;
@@ -106,10 +111,13 @@ kapfix::v1::VideoFrame VideoDownlink::Encode(const CapturedFrame& frame,
 void VideoDownlink::EncoderThread() {
   std::unique_lock lock(mutex_);
   while (true) {
+    encoding_ = false;
+    drained_.notify_all();
     wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
     if (stop_) return;
     Pending pending = std::move(*pending_);
     pending_.reset();
+    encoding_ = true;
     const VideoConfig settings = settings_;
     lock.unlock();
     try {

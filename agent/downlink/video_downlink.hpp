@@ -29,6 +29,8 @@ class VideoDownlink : public StepObserver {
               const TelemetryRecord& record) override;
 
   void SetSettings(const VideoConfig& settings);  // any thread; must be IsValid
+  // Any thread: waits until every frame taken so far is sent or dropped (none in the encoder).
+  void Flush();
   std::uint64_t dropped() const { return dropped_.load(); }
   std::uint64_t sent() const { return sent_.load(); }
 
@@ -47,6 +49,8 @@ class VideoDownlink : public StepObserver {
   StreamSink& sink_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
+  std::condition_variable drained_;  // no pending frame and the encoder idle
+  bool encoding_ = false;            // the encoder holds a frame
   VideoConfig settings_;
   std::optional<Pending> pending_;
   bool stop_ = false;

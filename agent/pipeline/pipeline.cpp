@@ -5,8 +5,6 @@
 #include <chrono>
 #include <thread>
 
-#include "agent/pipeline/watchdog.hpp"
-
 namespace kapfix::agent {
 namespace {
 
@@ -61,12 +59,15 @@ void Pipeline::SetServoHealth(DeviceHealth health) {
 PipelineStats Pipeline::Run() {
   PipelineStats stats;
   const auto start = std::chrono::steady_clock::now();
-  Watchdog watchdog(std::chrono::milliseconds(options_.watchdog_ms), [this] {
-    std::lock_guard lock(servo_mutex_);
-    spdlog::warn("control loop stalled for {} ms: parking the servos", options_.watchdog_ms);
-    std::string error;
-    if (!servos_.Park(&error)) spdlog::error("watchdog could not park the servos: {}", error);
-  });
+  Watchdog watchdog(
+      std::chrono::milliseconds(options_.watchdog_ms),
+      [this] {
+        std::lock_guard lock(servo_mutex_);
+        spdlog::warn("control loop stalled for {} ms: parking the servos", options_.watchdog_ms);
+        std::string error;
+        if (!servos_.Park(&error)) spdlog::error("watchdog could not park the servos: {}", error);
+      },
+      options_.watchdog_clock);
   std::uint64_t grab_errors = 0;
   std::string capture_error;
   std::uint64_t reconnects = 0;

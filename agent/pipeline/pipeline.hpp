@@ -16,6 +16,7 @@
 #include "agent/pipeline/latest_frame_slot.hpp"
 #include "agent/pipeline/servo_commander.hpp"
 #include "agent/pipeline/step_observer.hpp"
+#include "agent/pipeline/watchdog.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "common/fixation/fixation_loop.hpp"
 
@@ -29,6 +30,7 @@ struct PipelineOptions {
   // speed. Hardware runs free: the camera sets the pace and stale frames are dropped.
   bool lock_step = false;
   int watchdog_ms = 500;  // [ms] servos park when no control step completed for this long
+  WatchdogClock watchdog_clock = std::chrono::steady_clock::now;  // a test's own time
   // [frames] from the capture of a frame to the first frame that shows the command sent for
   // it (1 + the servos' latency). The angles a frame was seen through are taken as the
   // command sent that many frames earlier (park before the first command).

@@ -1,21 +1,25 @@
 #include "agent/pipeline/watchdog.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace kapfix::agent {
 
-Watchdog::Watchdog(std::chrono::milliseconds timeout, std::function<void()> on_stall)
-    : timeout_(timeout), on_stall_(std::move(on_stall)) {
+Watchdog::Watchdog(std::chrono::milliseconds timeout, std::function<void()> on_stall,
+                   WatchdogClock clock)
+    : timeout_(timeout), on_stall_(std::move(on_stall)), clock_(std::move(clock)) {
   if (timeout_.count() <= 0) throw std::invalid_argument("Watchdog: timeout must be > 0 ms");
   if (!on_stall_) throw std::invalid_argument("Watchdog: no action on a stall");
+  if (!clock_) throw std::invalid_argument("Watchdog: no clock");
   thread_ = std::thread([this] { Run(); });
 }
 
 Watchdog::~Watchdog() { Stop(); }
 
 void Watchdog::Kick() {
+  const auto now = clock_();
   std::lock_guard lock(mutex_);
-  last_kick_ = std::chrono::steady_clock::now();
+  last_kick_ = now;
   armed_ = true;
   fired_ = false;
 }
@@ -23,6 +27,11 @@ void Watchdog::Kick() {
 void Watchdog::Disarm() {
   std::lock_guard lock(mutex_);
   armed_ = false;
+}
+
+void Watchdog::Check() {
+  std::unique_lock lock(mutex_);
+  if (!stop_ && UntilDue() <= std::chrono::steady_clock::duration::zero()) Fire(lock);
 }
 
 void Watchdog::Stop() {
@@ -39,23 +48,34 @@ std::uint64_t Watchdog::stall_count() const {
   return stalls_;
 }
 
+std::chrono::steady_clock::duration Watchdog::UntilDue() const {
+  // The clock is read on every look, armed or not, so that a test can tell the watchdog
+  // looked.
+  const auto now = clock_();
+  // Nothing to watch until the next Kick: look again at the timeout's pace.
+  if (!armed_ || fired_) return timeout_;
+  const std::chrono::steady_clock::duration left = last_kick_ + timeout_ - now;
+  return std::clamp<std::chrono::steady_clock::duration>(
+      left, std::chrono::steady_clock::duration::zero(), timeout_);
+}
+
+void Watchdog::Fire(std::unique_lock<std::mutex>& lock) {
+  fired_ = true;
+  ++stalls_;
+  lock.unlock();
+  on_stall_();
+  lock.lock();
+}
+
 void Watchdog::Run() {
   std::unique_lock lock(mutex_);
   while (!stop_) {
-    if (!armed_ || fired_) {
-      // Nothing to watch until the next Kick; poll at the timeout's pace.
-      wake_.wait_for(lock, timeout_, [this] { return stop_; });
+    const auto wait = UntilDue();
+    if (wait > std::chrono::steady_clock::duration::zero()) {
+      wake_.wait_for(lock, wait, [this] { return stop_; });
       continue;
     }
-    const auto deadline = last_kick_ + timeout_;
-    if (wake_.wait_until(lock, deadline, [this] { return stop_; })) break;
-    if (!fired_ && std::chrono::steady_clock::now() >= last_kick_ + timeout_) {
-      fired_ = true;
-      ++stalls_;
-      lock.unlock();
-      on_stall_();
-      lock.lock();
-    }
+    Fire(lock);
   }
 }
 

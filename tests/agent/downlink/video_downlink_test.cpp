@@ -1,12 +1,11 @@
 // VideoDownlink: a frame becomes a scaled JPEG with the overlay the station draws; at most
-// `fps` frames per second of camera time are taken, none at 0.
+// `fps` frames per second of camera time are taken, none at 0. Flush waits for the encoder
+// thread, so no test waits on time.
 #include "agent/downlink/video_downlink.hpp"
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <opencv2/imgcodecs.hpp>
-#include <thread>
 #include <vector>
 
 #include "tests/agent/support/recording_stream_sink.hpp"
@@ -15,7 +14,6 @@ namespace kapfix::agent {
 namespace {
 
 using kapfix::agent::testing::RecordingStreamSink;
-using kapfix::agent::testing::WaitUntil;
 
 CapturedFrame Frame(std::uint64_t index, std::int64_t time_us, cv::Size size = {64, 48}) {
   cv::Mat image(size, CV_8UC3);
@@ -128,8 +126,7 @@ TEST(VideoDownlinkTest, TakesAThirdOfA30FpsCameraAt10Fps) {
     downlink.OnStep(Frame(i, static_cast<std::int64_t>(i) * 33'333), FrameOutcome{},
                     TelemetryRecord{});
   }
-  ASSERT_TRUE(WaitUntil([&] { return Taken(downlink) >= 10; })) << Taken(downlink);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  downlink.Flush();
   EXPECT_EQ(Taken(downlink), 10u);
   EXPECT_EQ(sink.Messages<kapfix::v1::VideoFrame>().size(), downlink.sent());
 }
@@ -141,7 +138,8 @@ TEST(VideoDownlinkTest, TakesEveryThirdFrameOfA30FpsCameraAt10Fps) {
     downlink.OnStep(Frame(i, static_cast<std::int64_t>(i) * 33'333), FrameOutcome{},
                     TelemetryRecord{});
   }
-  ASSERT_TRUE(WaitUntil([&] { return Taken(downlink) >= 10; })) << Taken(downlink);
+  downlink.Flush();
+  EXPECT_EQ(Taken(downlink), 10u);
   const auto frames = sink.Messages<kapfix::v1::VideoFrame>();
   ASSERT_FALSE(frames.empty());
   for (const kapfix::v1::VideoFrame& frame : frames) EXPECT_EQ(frame.frame_number() % 3, 0u);
@@ -154,7 +152,7 @@ TEST(VideoDownlinkTest, ZeroFpsPublishesNothing) {
     downlink.OnStep(Frame(i, static_cast<std::int64_t>(i) * 33'333), FrameOutcome{},
                     TelemetryRecord{});
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  downlink.Flush();
   EXPECT_EQ(sink.size(), 0u);
   EXPECT_EQ(Taken(downlink), 0u);
 }
@@ -164,8 +162,9 @@ TEST(VideoDownlinkTest, SetSettingsToZeroFpsStopsTheVideo) {
   VideoDownlink downlink(sink, Video(10));
   downlink.SetSettings(Video(0));
   downlink.OnStep(Frame(0, 0), FrameOutcome{}, TelemetryRecord{});
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  downlink.Flush();
   EXPECT_EQ(sink.size(), 0u);
+  EXPECT_EQ(Taken(downlink), 0u);
 }
 
 TEST(VideoDownlinkTest, AFrameTheSinkRefusesIsCountedAsDropped) {
@@ -173,7 +172,8 @@ TEST(VideoDownlinkTest, AFrameTheSinkRefusesIsCountedAsDropped) {
   sink.RefuseNext(1);
   VideoDownlink downlink(sink, Video(10));
   downlink.OnStep(Frame(0, 0), FrameOutcome{}, TelemetryRecord{});
-  ASSERT_TRUE(WaitUntil([&] { return downlink.dropped() == 1; }));
+  downlink.Flush();
+  EXPECT_EQ(downlink.dropped(), 1u);
   EXPECT_EQ(downlink.sent(), 0u);
 }
 

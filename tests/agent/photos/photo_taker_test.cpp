@@ -22,7 +22,6 @@ namespace kapfix::agent {
 namespace {
 
 using kapfix::agent::testing::RecordingStreamSink;
-using kapfix::agent::testing::WaitUntil;
 using kapfix::testing::TempDir;
 
 constexpr std::int64_t kFramePeriodUs = 100'000;  // a 10 fps camera
@@ -63,7 +62,7 @@ TEST(PhotoTakerTest, RequestedPhotoOfTheNextFrameIsStoredAndPublished) {
   std::string error;
   ASSERT_TRUE(rig.taker.Request("tower", &error)) << error;
   Step(rig.taker, 0);
-  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 1u);
   const std::vector<kapfix::v1::PhotoMetadata> stored = rig.store.ListSince(0);
   ASSERT_EQ(stored.size(), 1u);
@@ -77,8 +76,7 @@ TEST(PhotoTakerTest, RequestTakesOnlyOnePhoto) {
   std::string error;
   ASSERT_TRUE(rig.taker.Request("", &error)) << error;
   for (std::uint64_t i = 0; i < 5; ++i) Step(rig.taker, i);
-  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 1; }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a second one would be late
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 1u);
   EXPECT_EQ(rig.store.count(), 1u);
 }
@@ -94,7 +92,7 @@ TEST(PhotoTakerTest, FiveRequestsBeforeOneFrameMakeFiveFilesEachWithItsNameAndNo
     names.push_back(name);
   }
   Step(rig.taker, 0);
-  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 5; }));
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 5u);
   const std::vector<kapfix::v1::PhotoMetadata> stored = rig.store.ListSince(0);
   ASSERT_EQ(stored.size(), 5u);
@@ -124,7 +122,7 @@ TEST(PhotoTakerTest, IntervalPhotosKeepTheFreeSpaceReserve) {
     PhotoTaker taker(store, sink, nullptr);
     taker.SetInterval(0.5);
     for (std::uint64_t i = 0; i < 30; ++i) Step(taker, i);  // 3 s of camera time
-    EXPECT_TRUE(WaitUntil([&] { return taker.saved() + taker.failed() >= 5; }));
+    taker.Flush();
     saved = taker.saved();
     failed = taker.failed();
   }
@@ -140,7 +138,7 @@ TEST(PhotoTakerTest, IntervalPhotosKeepTheFreeSpaceReserve) {
 TEST(PhotoTakerTest, NoPhotoWithoutARequestOrAnInterval) {
   Rig rig;
   for (std::uint64_t i = 0; i < 5; ++i) Step(rig.taker, i);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 0u);
   EXPECT_EQ(rig.sink.size(), 0u);
 }
@@ -157,7 +155,8 @@ TEST(PhotoTakerTest, PhotoCarriesTheStepsMeasurements) {
   record.slice = 6;
   record.confidence = 0.75;
   rig.taker.OnStep(Frame(3), FrameOutcome{}, record);
-  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
+  rig.taker.Flush();
+  ASSERT_FALSE(rig.sink.Messages<kapfix::v1::Photo>().empty());
   const kapfix::v1::PhotoMetadata m = rig.sink.Messages<kapfix::v1::Photo>().front().metadata();
   EXPECT_EQ(m.displacement().x_px(), 4);
   EXPECT_FLOAT_EQ(m.displacement().x_subpx(), 0.25F);
@@ -228,8 +227,7 @@ TEST(PhotoTakerTest, IntervalTakesAPhotoEveryNSecondsOfCaptureTime) {
   Rig rig;
   rig.taker.SetInterval(1.0);
   for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);  // 0 … 3 s of camera time
-  ASSERT_TRUE(WaitUntil([&] { return rig.taker.saved() + rig.taker.failed() >= 3; }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 3u);  // at 1, 2 and 3 s
   EXPECT_EQ(rig.taker.failed(), 0u);
 }
@@ -239,7 +237,7 @@ TEST(PhotoTakerTest, IntervalZeroStopsThePeriodicPhotos) {
   rig.taker.SetInterval(1.0);
   rig.taker.SetInterval(0);
   for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 0u);
 }
 
@@ -253,8 +251,7 @@ TEST(PhotoTakerTest, ResendRepublishesTheStoredPhotosSinceTheGivenTime) {
   rig.store.Save(image, early, nullptr);
   const kapfix::v1::PhotoMetadata kept = rig.store.Save(image, late, nullptr);
   EXPECT_EQ(rig.taker.Resend(1500), std::vector<std::string>{kept.file_name()});
-  ASSERT_TRUE(WaitUntil([&] { return !rig.sink.Messages<kapfix::v1::Photo>().empty(); }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  rig.taker.Flush();
   const auto chunks = rig.sink.Messages<kapfix::v1::Photo>();
   ASSERT_EQ(chunks.size(), 1u);
   EXPECT_EQ(chunks[0].metadata().file_name(), kept.file_name());
@@ -272,7 +269,7 @@ TEST(PhotoTakerTest, RequestIsRefusedWithTheReasonWhenTheFolderCannotBeWritten) 
   EXPECT_FALSE(taker.Request("", &error));
   EXPECT_NE(error.find(not_a_folder.string()), std::string::npos) << error;
   Step(taker, 0);  // the refused request takes nothing
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  taker.Flush();
   EXPECT_EQ(taker.saved() + taker.failed(), 0u);
 }
 

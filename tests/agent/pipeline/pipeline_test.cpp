@@ -10,6 +10,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
+#include <optional>
 #include <thread>
 
 #include "agent/capture/fake_frame_source.hpp"
@@ -18,11 +20,15 @@
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/maestro_usb_settings.hpp"
 #include "tests/agent/support/fake_maestro_usb_port.hpp"
+#include "tests/agent/support/manual_clock.hpp"
+#include "tests/agent/support/recording_stream_sink.hpp"
 
 namespace kapfix::agent {
 namespace {
 
-// Holds targets at `pan_deg`; sleeps `stall` on frame `stall_at` and `per_frame` on every frame.
+// Holds targets at `pan_deg`; sleeps `per_frame` on every frame (slower than the camera). With a
+// `clock`, every frame moves it one frame period, and frame `stall_at` moves it `stall` and
+// waits until `released` holds (the stall lasts until the test saw what it waits for).
 class ScriptedProcessor : public FrameProcessor {
  public:
   double pan_deg = 5.0;
@@ -30,10 +36,19 @@ class ScriptedProcessor : public FrameProcessor {
   std::chrono::milliseconds stall{0};
   std::chrono::milliseconds per_frame{0};
   std::uint64_t calls = 0;
+  testing::ManualClock* clock = nullptr;
+  std::function<bool()> released;
+  std::function<void(std::uint64_t)> at_frame;  // before frame `calls` is processed
 
   FrameOutcome Process(const CapturedFrame& /*frame*/, const ServoTargets& /*current*/,
                        double /*dt_s*/) override {
-    if (calls == stall_at) std::this_thread::sleep_for(stall);
+    if (at_frame) at_frame(calls);
+    if (clock != nullptr) clock->Advance(std::chrono::milliseconds(33));
+    if (calls == stall_at && clock != nullptr) {
+      clock->Advance(stall);
+      EXPECT_TRUE(testing::WaitUntil(released, std::chrono::seconds(30)))
+          << "the stall was never noticed";
+    }
     std::this_thread::sleep_for(per_frame);
     ++calls;
     FrameOutcome outcome;
@@ -44,9 +59,28 @@ class ScriptedProcessor : public FrameProcessor {
   }
 };
 
+// Records like FakeServoDriver and tells, from any thread, whether the pan servo was sent to
+// 0 deg (parked) after it held another angle.
+class ParkWatchingServoDriver : public FakeServoDriver {
+ public:
+  bool SetAngle(ServoAxis axis, double deg, std::string* error) override {
+    const bool ok = FakeServoDriver::SetAngle(axis, deg, error);
+    if (ok && axis == ServoAxis::kPan) {
+      if (deg != 0.0) moved_ = true;
+      if (deg == 0.0 && moved_) parked_ = true;
+    }
+    return ok;
+  }
+  bool parked() const { return parked_.load(); }
+
+ private:
+  std::atomic<bool> moved_{false};
+  std::atomic<bool> parked_{false};
+};
+
 struct Rig {
   FakeFrameSource* source = nullptr;
-  FakeServoDriver* fake = nullptr;
+  ParkWatchingServoDriver* fake = nullptr;
   std::unique_ptr<FakeFrameSource> source_owner;
   std::unique_ptr<LimitedServoDriver> servos;
   TelemetryRecorder telemetry;
@@ -55,7 +89,7 @@ struct Rig {
     source_owner = std::make_unique<FakeFrameSource>(
         std::vector<cv::Mat>{cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(1))});
     source = source_owner.get();
-    auto backend = std::make_unique<FakeServoDriver>();
+    auto backend = std::make_unique<ParkWatchingServoDriver>();
     fake = backend.get();
     // A clock that moves 1 s per reading: the rate limit never holds a move back, so what the
     // test sees is the pipeline's doing.
@@ -108,15 +142,21 @@ TEST(PipelineTest, LockStepDropsNothing) {
   for (std::size_t i = 0; i < records.size(); ++i) EXPECT_EQ(records[i].index, i);
 }
 
+// The watchdog runs on a clock the processor moves: one frame period per frame, 600 ms on
+// the stalled frame, which then waits until the servos were parked.
 TEST(PipelineTest, WatchdogParksTheServosWhenAControlStepStalls) {
   Rig rig;
+  testing::ManualClock clock;
   ScriptedProcessor processor;
+  processor.clock = &clock;
   processor.stall_at = 5;
   processor.stall = std::chrono::milliseconds(600);
+  processor.released = [&rig] { return rig.fake->parked(); };
   PipelineOptions options;
   options.frames = 10;
   options.lock_step = true;
   options.watchdog_ms = 150;
+  options.watchdog_clock = clock.AsFunction();
   Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   const PipelineStats stats = pipeline.Run();
   EXPECT_EQ(stats.watchdog_stalls, 1u);
@@ -137,13 +177,18 @@ TEST(PipelineTest, WatchdogParksTheServosWhenAControlStepStalls) {
   EXPECT_EQ(pan.back(), 0.0);
 }
 
+// Frames one period (33 ms) apart on the watchdog's clock never stall it, however slowly the
+// machine runs them.
 TEST(PipelineTest, NoStallNoPark) {
   Rig rig;
+  testing::ManualClock clock;
   ScriptedProcessor processor;
+  processor.clock = &clock;
   PipelineOptions options;
   options.frames = 10;
   options.lock_step = true;
   options.watchdog_ms = 200;
+  options.watchdog_clock = clock.AsFunction();
   Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   EXPECT_EQ(pipeline.Run().watchdog_stalls, 0u);
 }
@@ -240,26 +285,44 @@ TEST(PipelineTest, ALostCameraIsReopenedAndTheFlightResumes) {
   }
 }
 
+// Three frames arm the watchdog, then the camera goes away for good. The outage lasts many
+// watchdog timeouts on its clock (two per reconnect wait), and the run ends only after the
+// watchdog looked at that clock several times during it.
 TEST(PipelineTest, ALongCameraOutageIsNotAControlStall) {
   Rig rig;
+  testing::ManualClock clock;
   ScriptedProcessor processor;
-  rig.source->FailNextGrabs(1);
-  rig.source->FailOpen(true);  // stays unplugged until Stop
+  processor.clock = &clock;
+  // Lock step: the capture thread waits for this frame's end, so the source is not in use.
+  processor.at_frame = [&rig](std::uint64_t call) {
+    if (call != 2) return;
+    rig.source->FailNextGrabs(1);
+    rig.source->FailOpen(true);  // stays unplugged until Stop
+  };
   PipelineOptions options;
   options.lock_step = true;
   options.watchdog_ms = 50;
+  options.watchdog_clock = clock.AsFunction();
   options.retry_initial_ms = 5;
   options.retry_max_ms = 20;
+  Pipeline* running = nullptr;
+  std::optional<std::uint64_t> reads_at_outage;
+  const std::thread::id control_thread = std::this_thread::get_id();
+  options.on_alive = [&] {
+    if (std::this_thread::get_id() == control_thread) return;  // a control step
+    clock.Advance(std::chrono::milliseconds(2 * 50));
+    if (!reads_at_outage) reads_at_outage = clock.reads();
+    if (rig.source->open_attempts() >= 4 && clock.reads() >= *reads_at_outage + 3) {
+      running->Stop();
+    }
+  };
   Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
-  std::thread stopper([&pipeline] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    pipeline.Stop();
-  });
+  running = &pipeline;
   const PipelineStats stats = pipeline.Run();
-  stopper.join();
+  EXPECT_EQ(stats.processed, 3u);
   EXPECT_EQ(stats.watchdog_stalls, 0u)
       << "the servos must hold, not park, while the camera is away";
-  EXPECT_GE(rig.source->open_attempts(), 3) << "reconnection was retried";
+  EXPECT_GE(rig.source->open_attempts(), 4) << "reconnection was retried";
   EXPECT_EQ(stats.camera_reconnects, 0u);
 }
 
