@@ -3,6 +3,7 @@
 #include <QFileInfo>
 #include <QMetaObject>
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <stdexcept>
 
@@ -15,7 +16,17 @@ constexpr int kTickMs = 10;  // [ms] playback granularity
 
 }  // namespace
 
-ReplayAgentClient::ReplayAgentClient(QObject* parent) : AgentClient(parent) {
+ReplayAgentClient::ReplayAgentClient(QObject* parent)
+    : ReplayAgentClient(
+          [] {
+            return std::chrono::duration_cast<std::chrono::nanoseconds>(
+                       std::chrono::steady_clock::now().time_since_epoch())
+                .count();
+          },
+          parent) {}
+
+ReplayAgentClient::ReplayAgentClient(Clock clock, QObject* parent)
+    : AgentClient(parent), clock_(std::move(clock)) {
   timer_.setInterval(kTickMs);
   connect(&timer_, &QTimer::timeout, this, &ReplayAgentClient::advance);
   state_.replay = true;
@@ -52,7 +63,7 @@ void ReplayAgentClient::close() {
 
 void ReplayAgentClient::play() {
   if (!reader_ || atEnd()) return;
-  wall_.start();
+  started_ns_ = clock_();
   timer_.start();
 }
 
@@ -65,7 +76,7 @@ void ReplayAgentClient::pause() {
 void ReplayAgentClient::setSpeed(double speed) {
   if (speed <= 0) return;
   position_us_ = clockUs();
-  wall_.restart();
+  started_ns_ = clock_();
   speed_ = speed;
 }
 
@@ -82,10 +93,12 @@ double ReplayAgentClient::positionS() const {
 std::int64_t ReplayAgentClient::clockUs() const {
   if (!timer_.isActive()) return position_us_;
   return position_us_ +
-         static_cast<std::int64_t>(static_cast<double>(wall_.nsecsElapsed()) / 1e3 * speed_);
+         static_cast<std::int64_t>(static_cast<double>(clock_() - started_ns_) / 1e3 * speed_);
 }
 
-void ReplayAgentClient::advance() { deliverUntil(clockUs()); }
+void ReplayAgentClient::advance() {
+  if (playing()) deliverUntil(clockUs());
+}
 
 void ReplayAgentClient::deliverUntil(std::int64_t time_us) {
   while (next_ && next_->receive_time_us <= time_us) {

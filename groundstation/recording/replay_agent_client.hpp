@@ -5,8 +5,9 @@
 // replay exactly as it showed the live link. There is no agent behind it: commands are
 // refused with that reason.
 
-#include <QElapsedTimer>
 #include <QTimer>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -19,7 +20,11 @@ class ReplayAgentClient final : public AgentClient {
   Q_OBJECT
 
  public:
+  // [ns] a monotonic clock: playback's pace. A steady clock by default; a test moves its own.
+  using Clock = std::function<std::int64_t()>;
+
   explicit ReplayAgentClient(QObject* parent = nullptr);
+  explicit ReplayAgentClient(Clock clock, QObject* parent = nullptr);
   ~ReplayAgentClient() override;
 
   // Opens a recording and stands at its start (paused). False with `error` when the file
@@ -34,6 +39,8 @@ class ReplayAgentClient final : public AgentClient {
   double speed() const { return speed_; }
   // Delivers everything left at once (the end of the recording, without waiting).
   void playToEnd();
+  // Delivers what is due by the clock now (the playback timer calls it every tick).
+  void advance();
 
   // [s] recorded time from the first message to the position reached.
   double positionS() const;
@@ -48,16 +55,16 @@ class ReplayAgentClient final : public AgentClient {
   void positionChanged(double seconds);
 
  private:
-  void advance();
   void deliverUntil(std::int64_t time_us);
   std::int64_t clockUs() const;  // [µs, recorded clock] where playback stands now
 
   std::unique_ptr<kapfix::link::SessionReader> reader_;
   std::optional<kapfix::link::RecordedMessage> next_;
   std::int64_t first_us_ = 0;     // [µs, recorded clock] first message
-  std::int64_t position_us_ = 0;  // [µs, recorded clock] where playback stood when wall_ started
+  std::int64_t position_us_ = 0;  // [µs, recorded clock] where playback stood at started_ns_
   std::int64_t last_us_ = 0;      // [µs, recorded clock] the last message delivered
-  QElapsedTimer wall_;            // since position_us_ was taken, while playing
+  Clock clock_;
+  std::int64_t started_ns_ = 0;  // [ns, clock_] when position_us_ was taken, while playing
   double speed_ = 1.0;
   std::uint64_t delivered_ = 0;
   LinkState state_;
