@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <any>
+#include <atomic>
 #include <cstdlib>
 #include <string>
 #include <utility>
@@ -245,7 +246,8 @@ template <typename T, int kChannels = 1>
 // kept in one piece, its levels and its cross-axis refinement side by side.
 // NOLINTNEXTLINE(readability-function-cognitive-complexity)
 SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
-                           const SearchOptions& options, int levels) {
+                           const SearchOptions& options, int levels,
+                           std::atomic<std::uint64_t>& built) {
   SearchResult result;
   const bool search_x = options.axis != SearchAxis::kY;
   const bool search_y = options.axis != SearchAxis::kX;
@@ -262,6 +264,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   // The reference's reduced crop depends only on the reference: built once per stored
   // reference and shared by every later search against it.
   const auto& ref_any = reference.Derived("pyr/" + std::to_string(levels), [&]() -> std::any {
+    ++built;
     ReferenceLevels derived;
     if (!MakeCrop(reference.image(), ref_want, levels, &derived.crop)) return {};
     derived.patches.resize(static_cast<std::size_t>(levels) + 1);
@@ -382,12 +385,12 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
 SearchResult PyramidSearch::Search(const ReferencePatch& reference, const cv::Mat& current,
                                    const SearchOptions& options) const {
   if (reference.type() == CV_8UC1) {
-    return SearchPyramid<std::uint8_t>(reference, current, options, levels_);
+    return SearchPyramid<std::uint8_t>(reference, current, options, levels_, *built_);
   }
   if (reference.type() == CV_16UC1) {
-    return SearchPyramid<std::uint16_t>(reference, current, options, levels_);
+    return SearchPyramid<std::uint16_t>(reference, current, options, levels_, *built_);
   }
-  return SearchPyramid<std::uint8_t, 3>(reference, current, options, levels_);
+  return SearchPyramid<std::uint8_t, 3>(reference, current, options, levels_, *built_);
 }
 
 }  // namespace kapfix

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
+
 #include "common/search/search_strategy.hpp"
 
 namespace kapfix {
@@ -26,9 +30,14 @@ class PyramidSearch final : public SearchStrategy {
   std::string name() const override { return "pyr"; }
   SearchResult Search(const ReferencePatch& reference, const cv::Mat& current,
                       const SearchOptions& options) const override;
+  // How many reduced references this search and its copies built: one per stored reference
+  // (shared by the reference's copies), however many searches ran against it.
+  std::uint64_t reduced_references_built() const { return built_->load(); }
 
  private:
   int levels_;
+  std::shared_ptr<std::atomic<std::uint64_t>> built_ =
+      std::make_shared<std::atomic<std::uint64_t>>(0);
 };
 
 }  // namespace kapfix

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <any>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -144,6 +145,24 @@ TEST(ReferencePatchTest, ReadsAnRoiCurrentFrameWithItsOwnStride) {
   const ReferencePatch patch(ref, set);
   EXPECT_EQ(patch.Distance(roi, {0, 0}), 0);
   EXPECT_EQ(patch.Distance(roi, {5, -3}), NaiveSsd<std::uint8_t>(ref, roi, set, {5, -3}));
+}
+
+TEST(ReferencePatchTest, DerivedIsBuiltOnceAndSharedByCopies) {
+  const ReferencePatch reference(testing::SmoothTexture({64, 64}, 6),
+                                 SampleSet({cv::Rect(16, 16, 32, 32)}, {SamplingKind::kAll}));
+  int built = 0;
+  const auto make = [&] {
+    ++built;
+    return std::any(1);
+  };
+  reference.Derived("probe", make);
+  reference.Derived("probe", make);
+  // Copies share what was derived: the copy is what is tested.
+  const ReferencePatch copy = reference;  // NOLINT(performance-unnecessary-copy-initialization)
+  copy.Derived("probe", make);
+  EXPECT_EQ(built, 1);
+  copy.Derived("another key", make);
+  EXPECT_EQ(built, 2);
 }
 
 }  // namespace

@@ -51,17 +51,19 @@ TEST(PyramidSearchTest, HoldsItsMinimumUnderABrightnessDrift) {
 
 TEST(PyramidSearchTest, BuildsTheReducedReferenceOncePerStoredReference) {
   const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
-  int built = 0;
-  const auto make = [&] {
-    ++built;
-    return std::any(1);
-  };
-  reference.Derived("probe", make);
-  reference.Derived("probe", make);
-  // Copies share what was derived: the copy is what is tested.
+  const PyramidSearch search;
+  for (const int dx : {-12, 5, 30}) {
+    ASSERT_TRUE(search.Search(reference, AeroWindow(dx, 0), {}).found);
+  }
+  // Copies of the stored reference share what was built for it.
   const ReferencePatch copy = reference;  // NOLINT(performance-unnecessary-copy-initialization)
-  copy.Derived("probe", make);
-  EXPECT_EQ(built, 1);
+  ASSERT_TRUE(search.Search(copy, AeroWindow(-7, 1), {}).found);
+  EXPECT_EQ(search.reduced_references_built(), 1u);
+  // Another stored reference gets its own.
+  const ReferencePatch other(AeroWindow(9, 0), CentralRandomTenth());
+  ASSERT_TRUE(search.Search(other, AeroWindow(0, 0), {}).found);
+  ASSERT_TRUE(search.Search(other, AeroWindow(20, 0), {}).found);
+  EXPECT_EQ(search.reduced_references_built(), 2u);
 }
 
 TEST(PyramidSearchTest, SixteenBitPlanesGiveTheSameAnswerAsEightBitOnes) {
