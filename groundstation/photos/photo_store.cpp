@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "kapfix/v1/photo_sidecar.hpp"
+
 namespace kapfix::station {
 
 QString PhotoStore::sidecarPathFor(const QString& image_path) {
@@ -45,14 +47,7 @@ std::optional<SavedPhoto> PhotoStore::add(const kapfix::v1::Photo& chunk) {
   saved.image_path = QString::fromStdString(
       kapfix::link::PhotoAssembler::Save(*photo, folder_.toStdString()).string());
 
-  std::string json;
-  google::protobuf::util::JsonPrintOptions options;
-  options.add_whitespace = true;
-  options.preserve_proto_field_names = true;
-  // Every quality field, also a false lock_lost or a 0 px blur: a missing one would read as
-  // "not measured".
-  options.always_print_primitive_fields = true;
-  (void)google::protobuf::util::MessageToJsonString(photo->metadata, &json, options);
+  const std::string json = kapfix::v1::PhotoSidecarJson(photo->metadata);
   saved.sidecar_path = sidecarPathFor(saved.image_path);
   QSaveFile sidecar(saved.sidecar_path);
   if (!sidecar.open(QIODevice::WriteOnly) ||

@@ -3,7 +3,7 @@
 // Where the agent's photos land on the station: chunks are put back together
 // (kapfix::link::PhotoAssembler, any order, repeats ignored) and each complete photo is
 // written atomically into the chosen folder next to its metadata sidecar,
-// "<file_name>.json" (PhotoMetadata as JSON, the same fields as the agent's own sidecar).
+// "<file_name>.json" (kapfix::v1::PhotoSidecarJson: the same text as the agent's own sidecar).
 
 #include <QString>
 #include <cstdint>

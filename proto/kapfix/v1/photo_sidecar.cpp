@@ -11,6 +11,9 @@ std::string PhotoSidecarJson(const PhotoMetadata& metadata) {
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
   options.preserve_proto_field_names = true;
+  // Every quality field, also a false lock_lost or a 0 px blur: to a reader that does not
+  // know proto3's defaults, a missing one would read as "not measured".
+  options.always_print_primitive_fields = true;
   if (!google::protobuf::util::MessageToJsonString(metadata, &json, options).ok()) {
     throw std::runtime_error("photo " + metadata.file_name() +
                              ": metadata not representable as JSON");

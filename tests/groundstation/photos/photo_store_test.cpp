@@ -4,6 +4,9 @@
 
 #include <QFile>
 #include <QTemporaryDir>
+#include <optional>
+
+#include "kapfix/v1/photo_sidecar.hpp"
 
 namespace kapfix::station {
 namespace {
@@ -37,6 +40,23 @@ TEST(PhotoStore, NewestCaptureTimeIgnoresFilesThatAreNotSidecars) {
   other.write("{ not json");
   other.close();
   EXPECT_EQ(PhotoStore::newestCaptureTimeUs(dir.path()), 2'000);
+}
+
+// One sidecar format: the station writes the text the agent and kapfix-ctl write, every
+// field included (a false lock_lost, a 0 px blur).
+TEST(PhotoStore, TheSidecarIsTheSharedSidecarText) {
+  const QTemporaryDir dir;
+  PhotoStore store(dir.path());
+  kapfix::v1::Photo photo = WholePhoto("a.jpg", 2'000);
+  photo.mutable_metadata()->set_lens_profile("6mm");
+  const std::optional<SavedPhoto> saved = store.add(photo);
+  ASSERT_TRUE(saved.has_value());
+  QFile sidecar(saved->sidecar_path);
+  ASSERT_TRUE(sidecar.open(QIODevice::ReadOnly));
+  const QByteArray text = sidecar.readAll();
+  EXPECT_EQ(text.toStdString(), kapfix::v1::PhotoSidecarJson(photo.metadata()));
+  EXPECT_TRUE(text.contains("\"lock_lost\": false")) << text.toStdString();
+  EXPECT_TRUE(text.contains("\"view_blur_px\": 0")) << text.toStdString();
 }
 
 TEST(PhotoStore, NewestCaptureTimeOfAnEmptyFolderIsZero) {
