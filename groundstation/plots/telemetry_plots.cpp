@@ -64,6 +64,42 @@ double Value(const TelemetrySample& sample, int curve) {
   return 0;
 }
 
+// One of the stacked plots, row `i` of the plot's layout, its margins aligned with the others';
+// only the lowest shows the time axis, titled `time_label`.
+QCPAxisRect* AddStackedRect(QCustomPlot* plot, QCPMarginGroup* margins, int i, const QFont& small,
+                            const QString& time_label) {
+  const auto at = static_cast<std::size_t>(i);
+  auto* rect = new QCPAxisRect(plot);
+  plot->plotLayout()->addElement(i, 0, rect);
+  rect->setMarginGroup(QCP::msLeft | QCP::msRight, margins);
+  rect->axis(QCPAxis::atLeft)->ticker()->setTickCount(kRectTicks[at]);
+  rect->axis(QCPAxis::atLeft)->setTickLabelFont(small);
+  rect->axis(QCPAxis::atBottom)->setTickLabelFont(small);
+  rect->setMinimumMargins(QMargins(0, 2, 0, 2));
+  // Room for three tick labels one above the other (the ±10 px scale's -10, 0, 10), so
+  // that they do not overlap however large the font (issue 14).
+  rect->setMinimumSize(0, kTickRows * QFontMetrics(small).height() + 4);
+  rect->axis(QCPAxis::atBottom)->setLabel(i == kRects - 1 ? time_label : QString());
+  rect->axis(QCPAxis::atBottom)->setTickLabels(i == kRects - 1);
+  rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
+  return rect;
+}
+
+// The legend of row `i`, in the column beside its plot.
+QCPLegend* AddLegend(QCustomPlot* plot, int i, const QFont& small) {
+  auto* legend = new QCPLegend;
+  plot->plotLayout()->addElement(i, 1, legend);
+  legend->setLayer(QStringLiteral("legend"));
+  legend->setFont(small);
+  legend->setRowSpacing(0);
+  legend->setBorderPen(Qt::NoPen);
+  legend->setMargins(QMargins(4, 0, 4, 0));
+  legend->setFillOrder(QCPLayoutGrid::foRowsFirst);  // two rows, then a new column
+  legend->setWrap(2);
+  legend->setIconSize(16, 8);
+  return legend;
+}
+
 }  // namespace
 
 TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
@@ -72,6 +108,21 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
       pause_(new QAction(tr("Pause"), this)),
       follow_(new QAction(tr("Follow"), this)),
       state_(new QLabel(this)) {
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->setSpacing(0);
+  layout->addWidget(makeToolbar());
+  layout->addWidget(plot_, 1);
+  makePlots();
+
+  connect(&client, &AgentClient::telemetryReceived, this, &TelemetryPlots::addSample);
+  redraw_timer_.setInterval(1000 / kRedrawHz);
+  connect(&redraw_timer_, &QTimer::timeout, this, &TelemetryPlots::redraw);
+  redraw_timer_.start();
+  showState();
+}
+
+QToolBar* TelemetryPlots::makeToolbar() {
   pause_->setCheckable(true);
   pause_->setShortcut(QKeySequence(Qt::Key_P));
   pause_->setToolTip(tr("Freeze the graphs; data is still collected (P)"));
@@ -98,12 +149,30 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   state_->setFont(bold);
   toolbar->addSeparator();
   toolbar->addWidget(state_);
-  auto* layout = new QVBoxLayout(this);
-  layout->setContentsMargins(0, 0, 0, 0);
-  layout->setSpacing(0);
-  layout->addWidget(toolbar);
-  layout->addWidget(plot_, 1);
 
+  connect(pause_, &QAction::toggled, this, [this](bool paused) {
+    showState();
+    if (!paused) redraw();
+  });
+  connect(follow_, &QAction::toggled, this, [this](bool on) {
+    showState();
+    if (on) {
+      dirty_ = true;
+      redraw();
+    }
+  });
+  connect(reset, &QAction::triggered, this, [this] {
+    follow_->setChecked(true);
+    dirty_ = true;
+    redraw();
+  });
+  connect(png, &QAction::triggered, this, [this] { chooseExport(true); });
+  connect(csv, &QAction::triggered, this, [this] { chooseExport(false); });
+  connect(clear_action, &QAction::triggered, this, &TelemetryPlots::clear);
+  return toolbar;
+}
+
+void TelemetryPlots::makePlots() {
   // Four stacked axis rects with aligned margins and one shared time axis; each legend in
   // the column beside its plot.
   plot_->plotLayout()->clear();
@@ -114,34 +183,9 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
   small.setPointSizeF(small.pointSizeF() * 0.85);
   plot_->plotLayout()->setRowSpacing(0);
   for (int i = 0; i < kRects; ++i) {
-    const auto at = static_cast<std::size_t>(i);
-    auto* rect = new QCPAxisRect(plot_);
-    plot_->plotLayout()->addElement(i, 0, rect);
-    rect->setMarginGroup(QCP::msLeft | QCP::msRight, margins);
-    rect->axis(QCPAxis::atLeft)->ticker()->setTickCount(kRectTicks[at]);
-    rect->axis(QCPAxis::atLeft)->setTickLabelFont(small);
-    rect->axis(QCPAxis::atBottom)->setTickLabelFont(small);
-    rect->setMinimumMargins(QMargins(0, 2, 0, 2));
-    // Room for three tick labels one above the other (the ±10 px scale's -10, 0, 10), so
-    // that they do not overlap however large the font (issue 14).
-    rect->setMinimumSize(0, kTickRows * QFontMetrics(small).height() + 4);
-    rect->axis(QCPAxis::atBottom)->setLabel(i == kRects - 1 ? tr("capture time [s]") : QString());
-    rect->axis(QCPAxis::atBottom)->setTickLabels(i == kRects - 1);
-    rect->setRangeZoom(Qt::Horizontal | Qt::Vertical);
-    auto* legend = new QCPLegend;
-    plot_->plotLayout()->addElement(i, 1, legend);
-    legend->setLayer(QStringLiteral("legend"));
-    legend->setFont(small);
-    legend->setRowSpacing(0);
-    legend->setBorderPen(Qt::NoPen);
-    legend->setMargins(QMargins(4, 0, 4, 0));
-    legend->setFillOrder(QCPLayoutGrid::foRowsFirst);  // two rows, then a new column
-    legend->setWrap(2);
-    legend->setIconSize(16, 8);
-    legends[at] = legend;
-    rects[at] = rect;
-  }
-  for (int i = 0; i < kRects; ++i) {
+    rects[static_cast<std::size_t>(i)] =
+        AddStackedRect(plot_, margins, i, small, tr("capture time [s]"));
+    legends[static_cast<std::size_t>(i)] = AddLegend(plot_, i, small);
     plot_->plotLayout()->setRowStretchFactor(i, kRectStretch[static_cast<std::size_t>(i)]);
   }
   plot_->plotLayout()->setColumnStretchFactor(1, 0.01);  // the legends take what they need
@@ -182,31 +226,6 @@ TelemetryPlots::TelemetryPlots(AgentClient& client, QWidget* parent)
     if (event->buttons() != Qt::NoButton) follow_->setChecked(false);
   });
   connect(plot_, &QCustomPlot::mouseWheel, this, [this] { follow_->setChecked(false); });
-  connect(pause_, &QAction::toggled, this, [this](bool paused) {
-    showState();
-    if (!paused) redraw();
-  });
-  connect(follow_, &QAction::toggled, this, [this](bool on) {
-    showState();
-    if (on) {
-      dirty_ = true;
-      redraw();
-    }
-  });
-  connect(reset, &QAction::triggered, this, [this] {
-    follow_->setChecked(true);
-    dirty_ = true;
-    redraw();
-  });
-  connect(png, &QAction::triggered, this, [this] { chooseExport(true); });
-  connect(csv, &QAction::triggered, this, [this] { chooseExport(false); });
-  connect(clear_action, &QAction::triggered, this, &TelemetryPlots::clear);
-
-  connect(&client, &AgentClient::telemetryReceived, this, &TelemetryPlots::addSample);
-  redraw_timer_.setInterval(1000 / kRedrawHz);
-  connect(&redraw_timer_, &QTimer::timeout, this, &TelemetryPlots::redraw);
-  redraw_timer_.start();
-  showState();
 }
 
 QString TelemetryPlots::stateText() const { return state_->text(); }

@@ -22,6 +22,7 @@ class QCustomPlot;
 class QCPGraph;
 class QCPRange;
 class QLabel;
+class QToolBar;
 
 namespace kapfix::station {
 
@@ -66,6 +67,8 @@ class TelemetryPlots final : public QWidget {
   void startSession();
 
  private:
+  QToolBar* makeToolbar();  // the actions above the plots and the state label, connected
+  void makePlots();         // the four stacked plots, their legends and curves
   void showState();
   void fitResidual();
   void addSample(const kapfix::v1::Telemetry& telemetry);

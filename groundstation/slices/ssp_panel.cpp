@@ -59,20 +59,7 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   top->addWidget(deadline_);
   top->addWidget(progress_, 1);
 
-  table_->setObjectName(QStringLiteral("sliceTable"));
-  table_->setHorizontalHeaderLabels(
-      {tr("Slice"), tr("DC"), tr("DC hyst."), tr("FFT /1000"), tr("1-shot"), tr("Rank")});
-  table_->verticalHeader()->hide();
-  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
-  table_->setSelectionMode(QAbstractItemView::SingleSelection);
-  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  // Each column as wide as its header and numbers (never truncated); a narrow dock scrolls.
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
-  // Room for the thesis's nine slices and the header, no more: the graphs get the rest.
-  table_->setMinimumHeight(11 * (table_->fontMetrics().height() + 6));
-  table_->setMaximumHeight(11 * (table_->fontMetrics().height() + 6));
-  table_->setToolTip(tr("Double-click a slice to fixate on it"));
+  setUpTable();
 
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(confirm_button);
@@ -89,6 +76,27 @@ SspPanel::SspPanel(AgentClient& client, QWidget* parent)
   layout->addWidget(message_);
   layout->addWidget(graphs_, 1);
 
+  connectControls();
+}
+
+void SspPanel::setUpTable() {
+  table_->setObjectName(QStringLiteral("sliceTable"));
+  table_->setHorizontalHeaderLabels(
+      {tr("Slice"), tr("DC"), tr("DC hyst."), tr("FFT /1000"), tr("1-shot"), tr("Rank")});
+  table_->verticalHeader()->hide();
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  table_->setSelectionMode(QAbstractItemView::SingleSelection);
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  // Each column as wide as its header and numbers (never truncated); a narrow dock scrolls.
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
+  // Room for the thesis's nine slices and the header, no more: the graphs get the rest.
+  table_->setMinimumHeight(11 * (table_->fontMetrics().height() + 6));
+  table_->setMaximumHeight(11 * (table_->fontMetrics().height() + 6));
+  table_->setToolTip(tr("Double-click a slice to fixate on it"));
+}
+
+void SspPanel::connectControls() {
   connect(run_, &QAction::triggered, this, [this] {
     if (confirmation_ == nullptr) {
       runSsp();

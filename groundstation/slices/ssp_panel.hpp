@@ -45,6 +45,8 @@ class SspPanel final : public QWidget {
   void clearSession();
 
  private:
+  void setUpTable();       // columns, sizes and tooltip of the slice table
+  void connectControls();  // the actions, the table, the graphs and the link
   void runSsp();
   void showReport(const kapfix::v1::SliceReport& report);
   void markInUse(unsigned slice);

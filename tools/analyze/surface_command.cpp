@@ -40,57 +40,49 @@ cv::Mat Heatmap(const cv::Mat& values) {
   return colored;
 }
 
-nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
+// The command line checked and turned into the study's settings.
+struct SurfaceSetup {
+  PatchLayout layout = PatchLayout::kCentral;
+  ColorChannel channel = ColorChannel::kGreen;
+  SamplingOptions sampling;
+  int patch_side = 0;  // [px]
+  DescentOptions descent;
+};
+
+SurfaceSetup ParseSurfaceArgs(const SurfaceArgs& args) {
+  SurfaceSetup setup;
   const auto layout = ParsePatchLayout(args.layout);
   if (!layout) {
     throw std::invalid_argument("--layout: expected central, individuals or merge, got '" +
                                 args.layout + "'");
   }
+  setup.layout = *layout;
   const auto channel = ParseColorChannel(args.channel);
   if (!channel) throw std::invalid_argument("--channel: expected green, rgb or rgb-sum");
-  SamplingOptions sampling;
+  setup.channel = *channel;
   std::string error;
-  if (!ParseSamplingOptions(args.sampling, &sampling, &error)) {
+  if (!ParseSamplingOptions(args.sampling, &setup.sampling, &error)) {
     throw std::invalid_argument("--sampling: " + error);
   }
-  sampling.seed = args.seed;
-  int patch_side = args.patch;
+  setup.sampling.seed = args.seed;
+  setup.patch_side = args.patch;
   if (args.thesis_pixels) {
-    if (sampling.kind == SamplingKind::kAll || *layout != PatchLayout::kCentral) {
+    if (setup.sampling.kind == SamplingKind::kAll || setup.layout != PatchLayout::kCentral) {
       throw std::invalid_argument(
           "--thesis-pixels: Table 3.2 used static or random sampling of one central patch");
     }
-    const ThesisSurfaceSampling thesis = ThesisTable32Sampling(sampling.kind, args.seed);
-    sampling = thesis.sampling;
-    patch_side = thesis.patch_side;
+    const ThesisSurfaceSampling thesis = ThesisTable32Sampling(setup.sampling.kind, args.seed);
+    setup.sampling = thesis.sampling;
+    setup.patch_side = thesis.patch_side;
   }
-  DescentOptions descent;
-  descent.max_steps = args.max_steps;
-  if (!descent.IsValid(&error)) throw std::invalid_argument(error);
+  setup.descent.max_steps = args.max_steps;
+  if (!setup.descent.IsValid(&error)) throw std::invalid_argument(error);
+  return setup;
+}
 
-  const cv::Mat frame = SquareFrame(LoadScene(args.image), args.frame);
-  const cv::Mat plane = ExtractChannel(frame, *channel);
-  if (patch_side + 4 > args.frame) {
-    throw std::invalid_argument("the " + std::to_string(patch_side) +
-                                "-px patch leaves no room to shift in a " +
-                                std::to_string(args.frame) + "-px frame (needs at least " +
-                                std::to_string(patch_side + 4) + ")");
-  }
-  const std::vector<cv::Rect> patches = MakePatchLayout(*layout, frame.size(), patch_side);
-  int range = args.frame;
-  for (const cv::Rect& r : patches) {
-    range = std::min({range, r.x, r.y, frame.cols - r.br().x, frame.rows - r.br().y});
-  }
-  if (range < 2) throw std::invalid_argument("the patches leave no room to shift in the frame");
-  const ReferencePatch reference(plane, SampleSet(patches, sampling));
-
-  ProgressReporter surface_progress("error surface");
-  const ErrorSurface surface = ComputeErrorSurface(
-      reference, plane, range, [&](int done, int total) { surface_progress.Update(done, total); });
-  ProgressReporter map_progress("success-rate map");
-  const SuccessRateMap map = ComputeSuccessRateMap(
-      surface, descent, [&](int done, int total) { map_progress.Update(done, total); });
-
+// surface.csv (distance and success per shift), the two images and steps_histogram.csv.
+void WriteSurfaceFiles(const ErrorSurface& surface, const SuccessRateMap& map, int range,
+                       ReportWriter& report) {
   std::vector<double> dx;
   std::vector<double> dy;
   std::vector<double> distance;
@@ -116,15 +108,43 @@ nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
     counts.push_back(n);
   }
   report.WriteCsv("steps_histogram.csv", {"steps", "starts"}, {steps, counts});
+}
+
+nlohmann::json RunSurface(const SurfaceArgs& args, ReportWriter& report) {
+  const SurfaceSetup setup = ParseSurfaceArgs(args);
+  const cv::Mat frame = SquareFrame(LoadScene(args.image), args.frame);
+  const cv::Mat plane = ExtractChannel(frame, setup.channel);
+  if (setup.patch_side + 4 > args.frame) {
+    throw std::invalid_argument("the " + std::to_string(setup.patch_side) +
+                                "-px patch leaves no room to shift in a " +
+                                std::to_string(args.frame) + "-px frame (needs at least " +
+                                std::to_string(setup.patch_side + 4) + ")");
+  }
+  const std::vector<cv::Rect> patches =
+      MakePatchLayout(setup.layout, frame.size(), setup.patch_side);
+  int range = args.frame;
+  for (const cv::Rect& r : patches) {
+    range = std::min({range, r.x, r.y, frame.cols - r.br().x, frame.rows - r.br().y});
+  }
+  if (range < 2) throw std::invalid_argument("the patches leave no room to shift in the frame");
+  const ReferencePatch reference(plane, SampleSet(patches, setup.sampling));
+
+  ProgressReporter surface_progress("error surface");
+  const ErrorSurface surface = ComputeErrorSurface(
+      reference, plane, range, [&](int done, int total) { surface_progress.Update(done, total); });
+  ProgressReporter map_progress("success-rate map");
+  const SuccessRateMap map = ComputeSuccessRateMap(
+      surface, setup.descent, [&](int done, int total) { map_progress.Update(done, total); });
+  WriteSurfaceFiles(surface, map, range, report);
 
   const cv::Point minimum = surface.ArgMin();
   return {{"image", args.image},
-          {"layout", ToString(*layout)},
-          {"sampling", ToString(sampling)},
+          {"layout", ToString(setup.layout)},
+          {"sampling", ToString(setup.sampling)},
           {"frame", args.frame},
           {"range_px", range},
           {"sampled_pixels", reference.size()},
-          {"patch", patch_side},
+          {"patch", setup.patch_side},
           {"starts", map.starts},
           {"success_pct", map.success_pct},
           {"global_minimum", {minimum.x, minimum.y}},
