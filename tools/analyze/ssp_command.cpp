@@ -83,52 +83,66 @@ nlohmann::json SpearmanJson(const std::map<std::string, SpearmanResult>& all,
   return {{"rho", it->second.rho}, {"p_value", it->second.p_value}, {"exact", it->second.exact}};
 }
 
-nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
-  const SliceSelectionOptions options = MakeSelectionOptions(args);
-  const auto strategy = MakeStrategy(args.swing, args.strategy);
-  // Before any rendering: the frame must hold the slices and the patch.
-  const cv::Size frame = MakeSwingOptions(args.swing).camera.frame_size;
+// Before any rendering: the frame must hold the slices and the patch.
+void CheckFrameHoldsTheSlices(const SspArgs& args, cv::Size frame) {
   if (frame.height < args.slices || args.swing.patch > std::min(frame.width, frame.height)) {
     throw std::invalid_argument("a " + std::to_string(frame.width) + "x" +
                                 std::to_string(frame.height) + " frame cannot hold " +
                                 std::to_string(args.slices) + " slices with a " +
                                 std::to_string(args.swing.patch) + "-px patch (see --size)");
   }
+}
 
+// The selection, scored on one swing, or (--validate) on each image with its closed-loop check.
+struct SspRun {
   SliceSelection selection;
   double upscale = 1.0;
-  std::vector<SspValidation> validations;
-  if (args.validate) {
-    std::vector<std::string> images = {args.swing.image};
-    for (const std::string& extra : SplitCommaList(args.pool)) images.push_back(extra);
-    ProgressReporter progress("ssp validation");
-    for (std::size_t i = 0; i < images.size(); ++i) {
-      SspValidationSetup setup;
-      setup.swing = args.swing;
-      setup.swing.image = images[i];
-      setup.strategy = args.strategy;
-      setup.selection = options;
-      setup.validation_seed = args.validation_seed;
-      setup.closed_loop_frames = args.closed_loop_frames;
-      validations.push_back(ValidateSsp(setup, [&](const std::string& stage, int done, int total) {
-        progress.SetStage(images[i] + ": " + stage);
-        progress.Update(done, total);
-      }));
-    }
-    selection = validations.front().selection;
-    upscale = validations.front().upscale;
-  } else {
-    const SwingRecording recording = RecordSwingWithProgress(args.swing);
-    upscale = recording.upscale_factor;
-    ProgressReporter progress("ssp");
-    selection = SelectSlice(recording.planes, *strategy, options,
-                            [&](int done, int total) { progress.Update(done, total); });
-  }
+  std::vector<SspValidation> validations;  // empty without --validate; the first is --image
+};
 
+SspRun SelectOrValidate(const SspArgs& args, const SliceSelectionOptions& options,
+                        const SearchStrategy& strategy) {
+  SspRun run;
+  if (!args.validate) {
+    const SwingRecording recording = RecordSwingWithProgress(args.swing);
+    run.upscale = recording.upscale_factor;
+    ProgressReporter progress("ssp");
+    run.selection = SelectSlice(recording.planes, strategy, options,
+                                [&](int done, int total) { progress.Update(done, total); });
+    return run;
+  }
+  std::vector<std::string> images = {args.swing.image};
+  for (const std::string& extra : SplitCommaList(args.pool)) images.push_back(extra);
+  ProgressReporter progress("ssp validation");
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    SspValidationSetup setup;
+    setup.swing = args.swing;
+    setup.swing.image = images[i];
+    setup.strategy = args.strategy;
+    setup.selection = options;
+    setup.validation_seed = args.validation_seed;
+    setup.closed_loop_frames = args.closed_loop_frames;
+    run.validations.push_back(
+        ValidateSsp(setup, [&](const std::string& stage, int done, int total) {
+          progress.SetStage(images[i] + ": " + stage);
+          progress.Update(done, total);
+        }));
+  }
+  run.selection = run.validations.front().selection;
+  run.upscale = run.validations.front().upscale;
+  return run;
+}
+
+// Each slice's displacement graph: a plot and a CSV column.
+struct SliceGraphs {
+  std::vector<PlotSeries> plots;
+  std::vector<std::vector<double>> columns;
+  std::vector<std::string> header;
+};
+
+// Each slice's scores as JSON; its graph into `graphs`.
+nlohmann::json SlicesJson(const SliceSelection& selection, SliceGraphs* graphs) {
   nlohmann::json slices = nlohmann::json::array();
-  std::vector<PlotSeries> graphs;
-  std::vector<std::vector<double>> graph_columns;
-  std::vector<std::string> graph_header;
   for (const SliceScore& s : selection.slices) {
     slices.push_back({{"index", s.index},
                       {"patch", {s.patch.x, s.patch.y, s.patch.width, s.patch.height}},
@@ -137,19 +151,96 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
                       {"fft", s.fft},
                       {"single_shot", s.single_shot}});
     const bool best = s.index == selection.best_slice;
-    graphs.push_back({"slice " + std::to_string(s.index) + "  DC " + std::to_string(s.dc) +
-                          (best ? "  (best)" : ""),
-                      s.graph.samples, best ? cv::Scalar(40, 160, 40) : cv::Scalar(200, 80, 20)});
-    graph_columns.push_back(s.graph.samples);
-    graph_header.push_back("slice" + std::to_string(s.index) + "_px");
+    graphs->plots.push_back({"slice " + std::to_string(s.index) + "  DC " + std::to_string(s.dc) +
+                                 (best ? "  (best)" : ""),
+                             s.graph.samples,
+                             best ? cv::Scalar(40, 160, 40) : cv::Scalar(200, 80, 20)});
+    graphs->columns.push_back(s.graph.samples);
+    graphs->header.push_back("slice" + std::to_string(s.index) + "_px");
   }
+  return slices;
+}
+
+// The closed-loop RMS of a validated slice [px].
+double RmsOf(const SspValidation& v, int slice) {
+  return v.fixation_rms_px[static_cast<std::size_t>(
+      std::find(v.distinct.begin(), v.distinct.end(), slice) - v.distinct.begin())];
+}
+
+// Over several images: each score's Spearman ρ pooled by a permutation test.
+nlohmann::json PooledJson(const std::vector<SspValidation>& validations, std::uint32_t seed) {
+  nlohmann::json pooled;
+  for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
+    std::vector<std::vector<double>> scores;
+    std::vector<std::vector<double>> outcomes;
+    for (const SspValidation& each : validations) {
+      scores.push_back(each.predicted_badness.at(name));
+      outcomes.push_back(each.fixation_rms_px);
+    }
+    try {
+      const PooledPermutationResult p =
+          PooledSpearmanPermutationTest(scores, outcomes, 10000, seed);
+      pooled[name] = {{"mean_rho", p.mean_rho},
+                      {"p_value", p.p_value},
+                      {"images_used", p.groups_used},
+                      {"permutations", p.permutations}};
+    } catch (const std::invalid_argument&) {
+      pooled[name] = nullptr;
+    }
+  }
+  return pooled;
+}
+
+// --validate's figures into `summary` (per slice, validation, spearman, pooled); returns each
+// slice's fixation RMS [px] (NaN for a slice that shares another's patch).
+std::vector<double> AddValidation(const SspArgs& args, const SspRun& run, nlohmann::json& summary) {
+  const SspValidation& v = run.validations.front();
+  std::vector<double> rms(run.selection.slices.size(), std::nan(""));
+  for (std::size_t i = 0; i < v.distinct.size(); ++i) {
+    const int index = v.distinct[i];
+    rms[static_cast<std::size_t>(index - 1)] = v.fixation_rms_px[i];
+    summary["slices"][index - 1]["fixation_rms_px"] = v.fixation_rms_px[i];
+  }
+  nlohmann::json merged = nlohmann::json::array();
+  for (const auto& group : v.groups) {
+    if (group.size() > 1) merged.push_back(group);
+  }
+  summary["validation"] = {
+      {"scored_on_seed", args.swing.seed},
+      {"validated_on_seed",
+       args.validation_seed != 0 ? args.validation_seed : args.swing.seed + 1000},
+      {"closed_loop_frames", args.closed_loop_frames},
+      {"figure", "closed-loop RMS view error per distinct slice [px]"},
+      {"distinct_slices", v.distinct},
+      {"merged_slices", merged},
+      {"best_slice_rms_px", RmsOf(v, v.best_slice)},
+      {"worst_slice_rms_px", RmsOf(v, v.worst_slice)}};
+  // Positive ρ: the score's "worse" slices fixate worse, as a good score should.
+  nlohmann::json spearman;
+  for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
+    spearman[name] = SpearmanJson(v.spearman, name);
+  }
+  summary["spearman"] = spearman;
+  if (run.validations.size() > 1) summary["pooled"] = PooledJson(run.validations, args.swing.seed);
+  return rms;
+}
+
+nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
+  const SliceSelectionOptions options = MakeSelectionOptions(args);
+  const auto strategy = MakeStrategy(args.swing, args.strategy);
+  const cv::Size frame = MakeSwingOptions(args.swing).camera.frame_size;
+  CheckFrameHoldsTheSlices(args, frame);
+  const SspRun run = SelectOrValidate(args, options, *strategy);
+  const SliceSelection& selection = run.selection;
+
+  SliceGraphs graphs;
   nlohmann::json summary = {{"image", args.swing.image},
                             {"strategy", args.strategy},
                             {"score", ToString(options.score)},
                             {"frames_used", selection.frames_used},
                             {"deadline_hit", selection.deadline_hit},
-                            {"scene_upscale", upscale},
-                            {"slices", slices},
+                            {"scene_upscale", run.upscale},
+                            {"slices", SlicesJson(selection, &graphs)},
                             {"ranking", selection.ranking},
                             {"best_slice", selection.best_slice}};
   // Slices that share one patch (a frame shorter than slices × patch) are one candidate:
@@ -165,66 +256,14 @@ nlohmann::json RunSsp(const SspArgs& args, ReportWriter& report) {
   std::vector<std::string> header = {"slice", "dc", "dc_hysteresis", "fft", "single_shot"};
   std::vector<std::vector<double>> table = {columns.index, columns.dc, columns.dc_hysteresis,
                                             columns.fft, columns.single_shot};
-  if (!validations.empty()) {
-    const SspValidation& v = validations.front();
-    std::vector<double> rms(selection.slices.size(), std::nan(""));
-    for (std::size_t i = 0; i < v.distinct.size(); ++i) {
-      const int index = v.distinct[i];
-      rms[static_cast<std::size_t>(index - 1)] = v.fixation_rms_px[i];
-      summary["slices"][index - 1]["fixation_rms_px"] = v.fixation_rms_px[i];
-    }
-    nlohmann::json merged = nlohmann::json::array();
-    for (const auto& group : v.groups) {
-      if (group.size() > 1) merged.push_back(group);
-    }
-    summary["validation"] = {
-        {"scored_on_seed", args.swing.seed},
-        {"validated_on_seed",
-         args.validation_seed != 0 ? args.validation_seed : args.swing.seed + 1000},
-        {"closed_loop_frames", args.closed_loop_frames},
-        {"figure", "closed-loop RMS view error per distinct slice [px]"},
-        {"distinct_slices", v.distinct},
-        {"merged_slices", merged},
-        {"best_slice_rms_px",
-         v.fixation_rms_px[static_cast<std::size_t>(
-             std::find(v.distinct.begin(), v.distinct.end(), v.best_slice) - v.distinct.begin())]},
-        {"worst_slice_rms_px", v.fixation_rms_px[static_cast<std::size_t>(
-                                   std::find(v.distinct.begin(), v.distinct.end(), v.worst_slice) -
-                                   v.distinct.begin())]}};
-    // Positive ρ: the score's "worse" slices fixate worse, as a good score should.
-    nlohmann::json spearman;
-    for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
-      spearman[name] = SpearmanJson(v.spearman, name);
-    }
-    summary["spearman"] = spearman;
-    if (validations.size() > 1) {
-      nlohmann::json pooled;
-      for (const char* name : {"dc", "dc-hyst", "fft", "single-shot"}) {
-        std::vector<std::vector<double>> scores;
-        std::vector<std::vector<double>> outcomes;
-        for (const SspValidation& each : validations) {
-          scores.push_back(each.predicted_badness.at(name));
-          outcomes.push_back(each.fixation_rms_px);
-        }
-        try {
-          const PooledPermutationResult p =
-              PooledSpearmanPermutationTest(scores, outcomes, 10000, args.swing.seed);
-          pooled[name] = {{"mean_rho", p.mean_rho},
-                          {"p_value", p.p_value},
-                          {"images_used", p.groups_used},
-                          {"permutations", p.permutations}};
-        } catch (const std::invalid_argument&) {
-          pooled[name] = nullptr;
-        }
-      }
-      summary["pooled"] = pooled;
-    }
+  if (!run.validations.empty()) {
     header.emplace_back("fixation_rms_px");
-    table.push_back(rms);
+    table.push_back(AddValidation(args, run, summary));
   }
   report.WriteCsv("slices.csv", header, table);
-  report.WriteCsv("graphs.csv", graph_header, graph_columns);
-  report.WritePng("slices.png", RenderSmallMultiples("displacement graph per slice [px]", graphs));
+  report.WriteCsv("graphs.csv", graphs.header, graphs.columns);
+  report.WritePng("slices.png",
+                  RenderSmallMultiples("displacement graph per slice [px]", graphs.plots));
   return summary;
 }
 
