@@ -6,6 +6,7 @@
 
 #include "agent/config/config_reader.hpp"
 #include "agent/config/options_from_settings.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
 #include "kapfix/v1/command.pb.h"
 
 namespace kapfix::agent {

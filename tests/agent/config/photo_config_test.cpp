@@ -10,6 +10,7 @@
 
 #include "agent/config/agent_config.hpp"
 #include "agent/config_file/agent_config_file.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
@@ -77,8 +78,8 @@ TEST(PhotoConfigTest, WindowLongerThanTheCapIsRefused) {
   std::string error;
   EXPECT_FALSE(config.IsValid(&error));
   EXPECT_EQ(error,
-            "photo: shutter window 12 s is longer than its cap 10 s: shorten the window or raise "
-            "the cap");
+            "photo: shutter window 12.00 s is longer than its cap 10.00 s: shorten the window or "
+            "raise the cap");
 }
 
 TEST(PhotoConfigTest, ExposureThatIsNotPositiveIsRefused) {
