@@ -53,7 +53,7 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   // --blur smears each frame over the photo's exposure (issue 13), at most one frame period.
   if (config.simulation.world.blur) {
     o.camera.motion_blur_exposure =
-        std::min(1.0, config.photos.exposure_ms / 1000.0 * config.camera.fps);
+        std::min(1.0, config.photo.exposure_ms() / 1000.0 * config.camera.fps);
   }
   if (default_gusts) o.kite.gusts = config.simulation.gusts;
   o.pan.min_deg = config.servo.pan.limits.min_deg;
@@ -104,7 +104,7 @@ AgentConfig BuiltInConfig(MotionKind motion) {
   AgentConfig config;
   config.simulation.motion = motion;
   config.search.axis = motion == MotionKind::kBoat ? SearchAxis::kY : SearchAxis::kBoth;
-  config.controller.kp = 1.0;
+  config.gains.set_p(1.0F);
   // A simulated flight from a user's shell: photos next to it, not in the service's folder.
   config.photos.dir = "kapfix-photos";
   config.state_dir = "kapfix-state";
@@ -280,7 +280,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     return state_->settings()->lens;  // photos are taken once the agent runs
   });
   photos_->SetInterval(config_.photos.interval_s);
-  photos_->SetShutter(config_.photos);
+  photos_->SetShutter(config_.photo);
   // The still camera is opened at its first photo, so it costs nothing until selected.
   photos_->SetStillCamera(std::make_shared<StillCameraTrigger>(
       std::make_unique<Gphoto2StillCamera>(), options_.still_camera_delete));
@@ -395,7 +395,7 @@ void Agent::Stop() {
 std::string Agent::Describe() const {
   const auto settings = state_->settings();
   return source_->Describe() + "; " + servos_->Describe() + "; controller " +
-         std::string(ToString(settings->controller.kind)) + ", search " +
+         kapfix::v1::WordOf(settings->gains.controller()) + ", search " +
          settings->search.strategy + " " + std::string(ToString(settings->search.axis)) +
          "; commands on " + command_endpoint_ + ", streams on " + stream_endpoint_;
 }

@@ -57,7 +57,7 @@ struct AgentOptions {
 // in simulation — with EvaluateClosedLoop's choices for the closed loop
 // (common/evaluation/closed_loop_evaluation.hpp): a kite is searched on both axes so the tilt
 // servo holds its Y jitter, a boat along Y, and the controller's gain is 1 (the config
-// default kp 0.8 leaves 5.2 px RMS on the kite flight of 900 frames where 1.0 leaves 2.9).
+// default P gain 0.8 leaves 5.2 px RMS on the kite flight of 900 frames where 1.0 leaves 2.9).
 AgentConfig BuiltInConfig(MotionKind motion);
 
 // The real camera and servo backend a config names (not "sim"); not opened.

@@ -143,14 +143,14 @@ int Main(int argc, char** argv) {
                "the camera's card keeps it too)");
   app.add_option("--photo-interval", photo_interval_s,
                  "seconds between automatic photos, 0 = off (overrides photos.interval_s)");
-  app.add_option("--shutter", shutter, "when a photo is taken (overrides photos.shutter)")
+  app.add_option("--shutter", shutter, "when a photo is taken (overrides settings.photo.shutter)")
       ->check(CLI::IsMember({"interval", "best-phase"}));
   app.add_option("--shutter-window", shutter_window_s,
                  "best-phase wait for the quietest moment, 0 = one swing period [s] (overrides "
-                 "photos.window_s)");
+                 "settings.photo.window_s)");
   app.add_option("--photo-exposure", photo_exposure_ms,
                  "photo exposure the shutter plans for and --blur smears over [ms] (overrides "
-                 "photos.exposure_ms)");
+                 "settings.photo.exposure_ms)");
   CLI11_PARSE(app, argc, argv);
 
   kapfix::WorldOptions world;
@@ -191,7 +191,10 @@ int Main(int argc, char** argv) {
     if (!LoadAgentConfig(config_path, &config, &error)) return Fail(error, 2);
     if (!motion.empty()) config.simulation.motion = *ParseMotionKind(motion);
   }
-  if (!controller.empty()) config.controller.kind = *ParseControllerKind(controller);
+  if (!controller.empty()) {
+    config.gains.set_controller(static_cast<kapfix::v1::ControllerKind>(
+        kapfix::v1::ValueOfWord(*kapfix::v1::ControllerKind_descriptor(), controller)->number()));
+  }
   if (seed) config.simulation.seed = *seed;
   if (!scene.empty()) config.simulation.scene = scene;
   config.simulation.world = world;
@@ -201,9 +204,12 @@ int Main(int argc, char** argv) {
   if (!photos_dir.empty()) config.photos.dir = photos_dir;
   if (!state_dir.empty()) config.state_dir = state_dir;
   if (photo_interval_s) config.photos.interval_s = *photo_interval_s;
-  if (!shutter.empty()) config.photos.shutter = *ParseShutterMode(shutter);
-  if (shutter_window_s) config.photos.window_s = *shutter_window_s;
-  if (photo_exposure_ms) config.photos.exposure_ms = *photo_exposure_ms;
+  if (!shutter.empty()) {
+    config.photo.set_shutter(static_cast<kapfix::v1::Shutter>(
+        kapfix::v1::ValueOfWord(*kapfix::v1::Shutter_descriptor(), shutter)->number()));
+  }
+  if (shutter_window_s) config.photo.set_window_s(static_cast<float>(*shutter_window_s));
+  if (photo_exposure_ms) config.photo.set_exposure_ms(static_cast<float>(*photo_exposure_ms));
   {
     std::string error;
     if (!camera_spec.empty() && !ApplyCameraSpec(camera_spec, &config.camera, &error)) {
@@ -297,7 +303,7 @@ int Main(int argc, char** argv) {
       {"loop_latency_p50_ms", figures.loop_latency_p50_ms},
       {"loop_latency_p99_ms", figures.loop_latency_p99_ms},
       {"rss_mb", figures.rss_mb},
-      {"controller", std::string(ToString(config.controller.kind))},
+      {"controller", kapfix::v1::WordOf(config.gains.controller())},
       {"p95_error_px", std::isfinite(figures.p95_error_px) ? nlohmann::json(figures.p95_error_px)
                                                            : nlohmann::json(nullptr)},
       {"gross_pct", std::isfinite(figures.gross_pct) ? nlohmann::json(figures.gross_pct)
@@ -316,7 +322,7 @@ int Main(int argc, char** argv) {
       {"servo_errors", stats.servo_errors},
       {"servo_outages", stats.servo_outages},
       {"camera_reconnects", stats.camera_reconnects},
-      {"shutter", std::string(ToString(config.photos.shutter))},
+      {"shutter", kapfix::v1::WordOf(config.photo.shutter())},
       {"photos", photo_figures.photos},
       {"photo_view_speed_px_mean", number(photo_figures.view_speed_px_mean)},
       {"photo_view_blur_px_mean", number(photo_figures.view_blur_px_mean)},

@@ -149,7 +149,7 @@ int Run(int argc, char** argv) {
   AgentConfig config;
   config.search.strategy = strategy;
   config.search.axis = SearchAxis::kBoth;
-  config.video.fps = video_fps;
+  config.video.set_fps(static_cast<float>(video_fps));
   StreamPublisherOptions publisher_options;
   publisher_options.bind_endpoint = "tcp://127.0.0.1:*";
   StreamPublisher publisher(publisher_options);

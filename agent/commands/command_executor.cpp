@@ -67,7 +67,7 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
       targets_.photos.SetInterval(settings->photos.interval_s);
       break;
     case kapfix::v1::Command::kSetPhoto:
-      targets_.photos.SetShutter(settings->photos);
+      targets_.photos.SetShutter(settings->photo);
       break;
     default:
       targets_.modes.RequestSettings(settings);

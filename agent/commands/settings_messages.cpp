@@ -3,21 +3,10 @@
 #include <algorithm>
 
 #include "agent/modes/report_messages.hpp"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 namespace {
-
-kapfix::v1::ControllerKind ToProto(ControllerKind kind) {
-  switch (kind) {
-    case ControllerKind::kP:
-      return kapfix::v1::CONTROLLER_KIND_P;
-    case ControllerKind::kPid:
-      return kapfix::v1::CONTROLLER_KIND_PID;
-    case ControllerKind::kPredictive:
-      return kapfix::v1::CONTROLLER_KIND_PREDICTIVE;
-  }
-  return kapfix::v1::CONTROLLER_KIND_UNSPECIFIED;
-}
 
 kapfix::v1::Sampling ToProto(SamplingKind kind) {
   switch (kind) {
@@ -45,27 +34,6 @@ kapfix::v1::Axis ToProto(SearchAxis axis) {
 
 kapfix::v1::Channel ToProto(ColorChannel channel) {
   return channel == ColorChannel::kRgbSum ? kapfix::v1::CHANNEL_RGB_SUM : kapfix::v1::CHANNEL_GREEN;
-}
-
-void ApplyGains(const kapfix::v1::Gains& g, ControllerConfig* c) {
-  switch (g.controller()) {
-    case kapfix::v1::CONTROLLER_KIND_P:
-      c->kind = ControllerKind::kP;
-      break;
-    case kapfix::v1::CONTROLLER_KIND_PID:
-      c->kind = ControllerKind::kPid;
-      break;
-    case kapfix::v1::CONTROLLER_KIND_PREDICTIVE:
-      c->kind = ControllerKind::kPredictive;
-      break;
-    default:
-      break;  // unspecified: unchanged
-  }
-  if (g.has_p()) c->kp = g.p();
-  if (g.has_i()) c->ki = g.i();
-  if (g.has_d()) c->kd = g.d();
-  if (g.has_dead_band_px()) c->dead_band_px = g.dead_band_px();
-  if (g.has_rate_limit_deg_per_s()) c->max_rate_deg_per_s = g.rate_limit_deg_per_s();
 }
 
 void ApplySearch(const kapfix::v1::SearchSettings& s, SearchConfig* c) {
@@ -141,36 +109,10 @@ void ApplyLens(const kapfix::v1::LensProfile& l, AgentConfig* c) {
   c->lens = name;
 }
 
-kapfix::v1::Shutter ToProto(ShutterMode mode) {
-  return mode == ShutterMode::kBestPhase ? kapfix::v1::SHUTTER_BEST_PHASE
-                                         : kapfix::v1::SHUTTER_INTERVAL;
-}
-
-kapfix::v1::PhotoCamera ToProto(PhotoCameraKind camera) {
-  return camera == PhotoCameraKind::kGphoto2 ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
-                                             : kapfix::v1::PHOTO_CAMERA_AGENT;
-}
-
-void ApplyPhoto(const kapfix::v1::PhotoSettings& p, PhotoConfig* c) {
-  if (p.shutter() == kapfix::v1::SHUTTER_INTERVAL) c->shutter = ShutterMode::kInterval;
-  if (p.shutter() == kapfix::v1::SHUTTER_BEST_PHASE) c->shutter = ShutterMode::kBestPhase;
-  if (p.has_window_s()) c->window_s = p.window_s();
-  if (p.has_window_cap_s()) c->window_cap_s = p.window_cap_s();
-  if (p.has_exposure_ms()) c->exposure_ms = p.exposure_ms();
-  if (p.camera() == kapfix::v1::PHOTO_CAMERA_AGENT) c->camera = PhotoCameraKind::kAgent;
-  if (p.camera() == kapfix::v1::PHOTO_CAMERA_GPHOTO2) c->camera = PhotoCameraKind::kGphoto2;
-}
-
 }  // namespace
 
 void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state) {
-  kapfix::v1::Gains* g = state->mutable_gains();
-  g->set_controller(ToProto(config.controller.kind));
-  g->set_p(static_cast<float>(config.controller.kp));
-  g->set_i(static_cast<float>(config.controller.ki));
-  g->set_d(static_cast<float>(config.controller.kd));
-  g->set_dead_band_px(static_cast<float>(config.controller.dead_band_px));
-  g->set_rate_limit_deg_per_s(static_cast<float>(config.controller.max_rate_deg_per_s));
+  *state->mutable_gains() = config.gains;
 
   kapfix::v1::SearchSettings* s = state->mutable_search();
   s->set_strategy(config.search.strategy);
@@ -197,16 +139,8 @@ void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state) {
   l->set_pixel_pitch_um(static_cast<float>(lens.pixel_pitch_um));
 
   state->set_photo_interval_s(static_cast<float>(config.photos.interval_s));
-  kapfix::v1::PhotoSettings* photo = state->mutable_photo();
-  photo->set_shutter(ToProto(config.photos.shutter));
-  photo->set_window_s(static_cast<float>(config.photos.window_s));
-  photo->set_window_cap_s(static_cast<float>(config.photos.window_cap_s));
-  photo->set_exposure_ms(static_cast<float>(config.photos.exposure_ms));
-  photo->set_camera(ToProto(config.photos.camera));
-  kapfix::v1::VideoSettings* v = state->mutable_video();
-  v->set_fps(static_cast<float>(config.video.fps));
-  v->set_jpeg_quality(static_cast<std::uint32_t>(config.video.quality));
-  v->set_scale(static_cast<float>(config.video.scale));
+  *state->mutable_photo() = config.photo;
+  *state->mutable_video() = config.video;
   state->set_frame_width_px(static_cast<std::uint32_t>(config.camera.width));
   state->set_frame_height_px(static_cast<std::uint32_t>(config.camera.height));
 }
@@ -216,7 +150,7 @@ bool ApplySettingsCommand(const kapfix::v1::Command& command, AgentConfig* confi
   AgentConfig updated = *config;
   switch (command.command_case()) {
     case kapfix::v1::Command::kSetGains:
-      ApplyGains(command.set_gains(), &updated.controller);
+      kapfix::v1::MergeSettings(command.set_gains(), &updated.gains);
       break;
     case kapfix::v1::Command::kSetSearch:
       ApplySearch(command.set_search(), &updated.search);
@@ -231,18 +165,14 @@ bool ApplySettingsCommand(const kapfix::v1::Command& command, AgentConfig* confi
     case kapfix::v1::Command::kSetLens:
       ApplyLens(command.set_lens(), &updated);
       break;
-    case kapfix::v1::Command::kSetVideo: {
-      const kapfix::v1::VideoSettings& v = command.set_video();
-      if (v.has_fps()) updated.video.fps = v.fps();
-      if (v.has_jpeg_quality()) updated.video.quality = static_cast<int>(v.jpeg_quality());
-      if (v.has_scale()) updated.video.scale = v.scale();
+    case kapfix::v1::Command::kSetVideo:
+      kapfix::v1::MergeSettings(command.set_video(), &updated.video);
       break;
-    }
     case kapfix::v1::Command::kSetPhotoIntervalS:
       updated.photos.interval_s = command.set_photo_interval_s();
       break;
     case kapfix::v1::Command::kSetPhoto:
-      ApplyPhoto(command.set_photo(), &updated.photos);
+      kapfix::v1::MergeSettings(command.set_photo(), &updated.photo);
       break;
     default:
       if (error) *error = "not a settings command";

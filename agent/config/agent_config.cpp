@@ -5,6 +5,9 @@
 #include <set>
 
 #include "agent/config/config_reader.hpp"
+#include "agent/config/options_from_settings.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
+#include "kapfix/v1/command.pb.h"
 
 namespace kapfix::agent {
 namespace {
@@ -151,6 +154,34 @@ bool IsAgentId(const std::string& id) {
   });
 }
 
+// "gains": the settings message's name in the configuration file's "settings" object and in
+// reasons, the settings command (Command.set_gains) that carries it without its "set_".
+std::string SettingsGroupName(const google::protobuf::Message& settings) {
+  const google::protobuf::Descriptor& command = *kapfix::v1::Command::descriptor();
+  for (int i = 0; i < command.field_count(); ++i) {
+    const google::protobuf::FieldDescriptor& field = *command.field(i);
+    if (field.message_type() == settings.GetDescriptor() && field.name().rfind("set_", 0) == 0) {
+      return field.name().substr(4);
+    }
+  }
+  return settings.GetDescriptor()->name();
+}
+
+// "<group>.<field>: not set" for the first setting that is absent: a held
+// settings message has every one (its initial value or what was set since).
+std::string MissingSetting(const google::protobuf::Message& settings, const std::string& group) {
+  const google::protobuf::Descriptor& type = *settings.GetDescriptor();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const google::protobuf::FieldDescriptor& field = *type.field(i);
+    if (kapfix::v1::SettingOf(field) == nullptr || field.is_repeated()) continue;
+    // An enum without presence at *_UNSPECIFIED (0) is as unset.
+    if (!settings.GetReflection()->HasField(settings, &field)) {
+      return group + "." + field.name() + ": not set";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 bool AgentConfig::IsValid(std::string* error) const {
@@ -179,9 +210,18 @@ bool AgentConfig::IsValid(std::string* error) const {
     }
   }
   if (names.count(lens) == 0) return fail("lens: no lens profile named '" + lens + "'");
-  if (!search.IsValid(error) || !controller.IsValid(error) || !link.IsValid(error) ||
-      !photos.IsValid(error) || !video.IsValid(error)) {
-    return false;
+  if (!search.IsValid(error) || !link.IsValid(error) || !photos.IsValid(error)) return false;
+  // Every settings message in the schema's ranges (an absent field would read 0: not allowed).
+  for (const google::protobuf::Message* settings :
+       std::initializer_list<const google::protobuf::Message*>{&gains, &photo, &video}) {
+    const std::string group = SettingsGroupName(*settings);
+    std::string reason = kapfix::v1::CheckSettings(*settings, group);
+    if (reason.empty()) reason = MissingSetting(*settings, group);
+    if (!reason.empty()) return fail(reason);
+  }
+  // Across fields (the window within its cap): the shutter's own check.
+  if (std::string reason; !OptionsFromSettings<BestPhaseShutterOptions>(photo).IsValid(&reason)) {
+    return fail("photo: " + reason);
   }
   if (search.patch_px > std::min(camera.width, camera.height)) {
     return fail("search.patch_px: " + std::to_string(search.patch_px) +

@@ -6,14 +6,14 @@
 #include <vector>
 
 #include "agent/config/camera_config.hpp"
-#include "agent/config/controller_config.hpp"
 #include "agent/config/lens_profile.hpp"
 #include "agent/config/link_config.hpp"
 #include "agent/config/photo_config.hpp"
 #include "agent/config/search_config.hpp"
 #include "agent/config/servo_config.hpp"
 #include "agent/config/simulation_config.hpp"
-#include "agent/config/video_config.hpp"
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -35,10 +35,14 @@ struct AgentConfig {
       {.name = "default", .deg_per_px_pan = 0.1, .deg_per_px_tilt = 0.1}};
   std::string lens = "default";
   SearchConfig search;
-  ControllerConfig controller;
+  // The operator settings held as their kapfix.v1 message: a command merges into it, the
+  // state carries it, the controller's options are copied from it by field name
+  // (OptionsFromSettings). Defaults: each field's `initial` in settings.proto.
+  kapfix::v1::Gains gains = kapfix::v1::InitialSettings<kapfix::v1::Gains>();
   LinkConfig link;
   PhotoConfig photos;
-  VideoConfig video;
+  kapfix::v1::PhotoSettings photo = kapfix::v1::InitialSettings<kapfix::v1::PhotoSettings>();
+  kapfix::v1::VideoSettings video = kapfix::v1::InitialSettings<kapfix::v1::VideoSettings>();
   // The agent's own files besides photos: calibrations per lens profile (calibration/).
   std::string state_dir = "/var/lib/kapfix";
   // On start, come back with the settings, mode, slice and fixated view stored in

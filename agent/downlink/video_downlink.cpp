@@ -5,6 +5,7 @@
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 #include <vector>
 
 namespace kapfix::agent {
@@ -19,8 +20,8 @@ void SetRect(const cv::Rect& r, kapfix::v1::Rect* out) {
 
 }  // namespace
 
-VideoDownlink::VideoDownlink(StreamSink& sink, VideoConfig settings)
-    : sink_(sink), settings_(settings), thread_([this] { EncoderThread(); }) {}
+VideoDownlink::VideoDownlink(StreamSink& sink, kapfix::v1::VideoSettings settings)
+    : sink_(sink), settings_(std::move(settings)), thread_([this] { EncoderThread(); }) {}
 
 VideoDownlink::~VideoDownlink() {
   {
@@ -31,7 +32,7 @@ VideoDownlink::~VideoDownlink() {
   thread_.join();
 }
 
-void VideoDownlink::SetSettings(const VideoConfig& settings) {
+void VideoDownlink::SetSettings(const kapfix::v1::VideoSettings& settings) {
   std::lock_guard lock(mutex_);
   settings_ = settings;
 }
@@ -46,7 +47,7 @@ void VideoDownlink::OnStep(const CapturedFrame& frame, const FrameOutcome& outco
   double fps = 0;
   {
     std::lock_guard lock(mutex_);
-    fps = settings_.fps;
+    fps = settings_.fps();
   }
   if (fps <= 0) return;
   const auto period_us = static_cast<std::int64_t>(std::llround(1e6 / fps));
@@ -75,13 +76,14 @@ void VideoDownlink::OnStep(const CapturedFrame& frame, const FrameOutcome& outco
 kapfix::v1::VideoFrame VideoDownlink::Encode(const CapturedFrame& frame,
                                              const FrameOutcome& outcome,
                                              const TelemetryRecord& record,
-                                             const VideoConfig& settings) {
+                                             const kapfix::v1::VideoSettings& settings) {
   cv::Mat scaled = frame.image;
-  if (settings.scale < 1.0) {
-    cv::resize(frame.image, scaled, cv::Size(), settings.scale, settings.scale, cv::INTER_AREA);
+  if (settings.scale() < 1.0F) {
+    cv::resize(frame.image, scaled, cv::Size(), settings.scale(), settings.scale(), cv::INTER_AREA);
   }
   std::vector<unsigned char> jpeg;
-  cv::imencode(".jpg", scaled, jpeg, {cv::IMWRITE_JPEG_QUALITY, settings.quality});
+  cv::imencode(".jpg", scaled, jpeg,
+               {cv::IMWRITE_JPEG_QUALITY, static_cast<int>(settings.jpeg_quality())});
   kapfix::v1::VideoFrame message;
   message.mutable_header()->set_capture_time_us(frame.capture_time_us);
   message.set_frame_number(frame.index);
@@ -118,7 +120,7 @@ void VideoDownlink::EncoderThread() {
     Pending pending = std::move(*pending_);
     pending_.reset();
     encoding_ = true;
-    const VideoConfig settings = settings_;
+    const kapfix::v1::VideoSettings settings = settings_;
     lock.unlock();
     try {
       if (sink_.Publish(Encode(pending.frame, pending.outcome, pending.record, settings))) {

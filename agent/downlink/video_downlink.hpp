@@ -7,9 +7,9 @@
 #include <optional>
 #include <thread>
 
-#include "agent/config/video_config.hpp"
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/server/stream_sink.hpp"
+#include "kapfix/v1/settings.pb.h"
 #include "kapfix/v1/video.pb.h"
 
 namespace kapfix::agent {
@@ -20,7 +20,7 @@ namespace kapfix::agent {
 // due is dropped and counted: the video is always the latest view, never a backlog.
 class VideoDownlink : public StepObserver {
  public:
-  VideoDownlink(StreamSink& sink, VideoConfig settings);
+  VideoDownlink(StreamSink& sink, kapfix::v1::VideoSettings settings);
   ~VideoDownlink() override;  // joins the encoder thread
   VideoDownlink(const VideoDownlink&) = delete;
   VideoDownlink& operator=(const VideoDownlink&) = delete;
@@ -28,15 +28,17 @@ class VideoDownlink : public StepObserver {
   void OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
               const TelemetryRecord& record) override;
 
-  void SetSettings(const VideoConfig& settings);  // any thread; must be IsValid
+  // Any thread; every field set and in the schema's range (AgentConfig::IsValid).
+  void SetSettings(const kapfix::v1::VideoSettings& settings);
   // Any thread: waits until every frame taken so far is sent or dropped (none in the encoder).
   void Flush();
   std::uint64_t dropped() const { return dropped_.load(); }
   std::uint64_t sent() const { return sent_.load(); }
 
-  // One camera frame as a VideoFrame message (scaled, JPEG at `quality`).
+  // One camera frame as a VideoFrame message (scaled, JPEG at its quality).
   static kapfix::v1::VideoFrame Encode(const CapturedFrame& frame, const FrameOutcome& outcome,
-                                       const TelemetryRecord& record, const VideoConfig& settings);
+                                       const TelemetryRecord& record,
+                                       const kapfix::v1::VideoSettings& settings);
 
  private:
   struct Pending {
@@ -51,7 +53,7 @@ class VideoDownlink : public StepObserver {
   std::condition_variable wake_;
   std::condition_variable drained_;  // no pending frame and the encoder idle
   bool encoding_ = false;            // the encoder holds a frame
-  VideoConfig settings_;
+  kapfix::v1::VideoSettings settings_;
   std::optional<Pending> pending_;
   bool stop_ = false;
   std::optional<std::int64_t> last_taken_us_;  // control thread only

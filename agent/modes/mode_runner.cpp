@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "agent/config/options_from_settings.hpp"
 #include "agent/modes/report_messages.hpp"
 #include "common/control/controller_factory.hpp"
 #include "common/image/color_channel.hpp"
@@ -27,16 +28,15 @@ namespace {
 bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
   const SearchConfig& s = a.search;
   const SearchConfig& t = b.search;
-  const ControllerConfig& c = a.controller;
-  const ControllerConfig& d = b.controller;
   const LensProfile& l = a.active_lens();
   const LensProfile& m = b.active_lens();
   return s.strategy == t.strategy && ToString(s.sampling) == ToString(t.sampling) &&
          s.sampling.seed == t.sampling.seed && s.patch_px == t.patch_px && s.slices == t.slices &&
          s.axis == t.axis && s.range_px == t.range_px && s.channel == t.channel &&
          s.subpixel == t.subpixel && s.slice_score == t.slice_score &&
-         s.dc_hysteresis_px == t.dc_hysteresis_px && c.kind == d.kind && l.name == m.name &&
-         l.DegPerPxPan() == m.DegPerPxPan() && l.DegPerPxTilt() == m.DegPerPxTilt();
+         s.dc_hysteresis_px == t.dc_hysteresis_px && a.gains.controller() == b.gains.controller() &&
+         l.name == m.name && l.DegPerPxPan() == m.DegPerPxPan() &&
+         l.DegPerPxTilt() == m.DegPerPxTilt();
 }
 
 // Progress reports of a free-swing process every this many frames (and at its end): often
@@ -53,16 +53,6 @@ constexpr int kResumeFrames = 30;
 // The whole-frame search of a resume: the hierarchical strategy, whatever the fixation
 // uses, so a frame-wide window costs about what the exhaustive one does on ±range.
 constexpr const char* kResumeStrategy = "pyr";
-
-ControllerGains MakeGains(const ControllerConfig& c) {
-  ControllerGains g;
-  g.p = c.kp;
-  g.i = c.ki;
-  g.d = c.kd;
-  g.dead_band_px = c.dead_band_px;
-  g.rate_limit_deg_per_s = c.max_rate_deg_per_s;
-  return g;
-}
 
 SearchOptions MakeSearchOptions(const SearchConfig& search) {
   SearchOptions o;
@@ -125,8 +115,9 @@ void ModeRunner::Rebuild() {
   const LensProfile& lens = settings_->active_lens();
   const LensCalibration calibration{lens.DegPerPxPan(), lens.DegPerPxTilt()};
   std::unique_ptr<Controller> controller =
-      MakeController(ToString(settings_->controller.kind), MakeGains(settings_->controller),
-                     calibration, options_.predictive, &error);
+      MakeController(kapfix::v1::WordOf(settings_->gains.controller()),
+                     OptionsFromSettings<ControllerGains>(settings_->gains), calibration,
+                     options_.predictive, &error);
   if (!controller) throw std::runtime_error("controller: " + error);
   strategy_ = std::move(strategy);
   loop_ = std::make_unique<FixationLoop>(MakeFixationOptions(mode_), strategy_,
@@ -181,7 +172,8 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     if (rebuild) {
       Rebuild();
     } else if (pending.settings && loop_) {
-      loop_->SetGains(MakeGains(settings_->controller));  // bumpless: the controller keeps state
+      // Bumpless: the controller keeps its state.
+      loop_->SetGains(OptionsFromSettings<ControllerGains>(settings_->gains));
     }
     if (pending.mode) Enter(pending.mode->first, pending.mode->second, frame, current);
   } catch (const std::exception& e) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "agent/config/options_from_settings.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -13,9 +15,9 @@ constexpr double kDefaultFramePeriodS = 1.0 / 30;
 
 PhotoShutter::PhotoShutter() : shutter_(forecaster_) {}
 
-void PhotoShutter::Set(const PhotoConfig& config) {
+void PhotoShutter::Set(const kapfix::v1::PhotoSettings& settings) {
   std::lock_guard lock(mutex_);
-  pending_ = config;
+  pending_ = settings;
 }
 
 void PhotoShutter::Request() { shutter_.Request(); }
@@ -27,18 +29,15 @@ std::optional<ShutterShot> PhotoShutter::OnStep(const CapturedFrame& frame,
     if (intervals_us_.size() > kIntervals) intervals_us_.pop_front();
   }
   last_time_us_ = frame.capture_time_us;
+  // The operator's settings as last set (the shutter's defaults are their initial values).
   BestPhaseShutterOptions options = shutter_.options();
   {
     std::lock_guard lock(mutex_);
     if (pending_) {
-      config_ = *pending_;
+      options = OptionsFromSettings(*pending_, options);
       pending_.reset();
     }
   }
-  options.mode = config_.shutter;
-  options.window_s = config_.window_s;
-  options.window_cap_s = config_.window_cap_s;
-  options.exposure_ms = config_.exposure_ms;
   options.frame_period_s = kDefaultFramePeriodS;
   if (!intervals_us_.empty()) {
     std::vector<std::int64_t> sorted(intervals_us_.begin(), intervals_us_.end());

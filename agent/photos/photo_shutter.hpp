@@ -4,10 +4,10 @@
 #include <mutex>
 #include <optional>
 
-#include "agent/config/photo_config.hpp"
 #include "agent/pipeline/step_observer.hpp"
 #include "common/shutter/best_phase_shutter.hpp"
 #include "common/shutter/swing_view_forecaster.hpp"
+#include "kapfix/v1/settings.pb.h"
 
 namespace kapfix::agent {
 
@@ -21,8 +21,8 @@ class PhotoShutter {
   PhotoShutter();
 
   // The photo settings to use from the next frame on (an open window keeps its end).
-  // `config` must be IsValid.
-  void Set(const PhotoConfig& config);
+  // `settings` must have every field set (AgentConfig::IsValid).
+  void Set(const kapfix::v1::PhotoSettings& settings);
 
   void Request();  // a photo is wanted: opens a window at the next frame
   bool window_open() const { return shutter_.window_open(); }
@@ -34,11 +34,10 @@ class PhotoShutter {
 
  private:
   std::mutex mutex_;
-  std::optional<PhotoConfig> pending_;  // guarded by mutex_
+  std::optional<kapfix::v1::PhotoSettings> pending_;  // guarded by mutex_
 
   SwingViewForecaster forecaster_;
   BestPhaseShutter shutter_;
-  PhotoConfig config_;
   std::optional<std::int64_t> last_time_us_;
   std::deque<std::int64_t> intervals_us_;  // [µs] between the last frames, newest last
 };

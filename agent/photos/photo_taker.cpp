@@ -61,10 +61,9 @@ void PhotoTaker::SetInterval(double seconds) {
   interval_s_ = seconds;
 }
 
-void PhotoTaker::SetShutter(const PhotoConfig& photos) {
-  shutter_.Set(photos);
-  cameras_.Select(photos.camera == PhotoCameraKind::kGphoto2 ? kapfix::v1::PHOTO_CAMERA_GPHOTO2
-                                                             : kapfix::v1::PHOTO_CAMERA_AGENT);
+void PhotoTaker::SetShutter(const kapfix::v1::PhotoSettings& photo) {
+  shutter_.Set(photo);
+  cameras_.Select(photo.camera());
 }
 
 void PhotoTaker::Flush() {

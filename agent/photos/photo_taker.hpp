@@ -11,7 +11,6 @@
 #include <thread>
 #include <vector>
 
-#include "agent/config/photo_config.hpp"
 #include "agent/photos/photo_cameras.hpp"
 #include "agent/photos/photo_shutter.hpp"
 #include "agent/photos/photo_store.hpp"
@@ -53,9 +52,9 @@ class PhotoTaker : public StepObserver {
   void SetStillCamera(std::shared_ptr<PhotoTrigger> still) {
     cameras_.SetStillCamera(std::move(still));
   }
-  // Any thread: shutter, window, cap, exposure and camera from the next frame on (`photos`
-  // IsValid).
-  void SetShutter(const PhotoConfig& photos);
+  // Any thread: shutter, window, cap, exposure and camera from the next frame on (every
+  // field set, as AgentConfig::IsValid checks).
+  void SetShutter(const kapfix::v1::PhotoSettings& photo);
   // Any thread: waits until every photo the shutter fired is written (or failed).
   void Flush();
   // Any thread: the metadata of the photos saved since the start (the first 100,000),

@@ -5,7 +5,7 @@
 
 namespace kapfix::agent {
 
-// The preflight line of the still camera (when photos.camera is gphoto2): it is found and
+// The preflight line of the still camera (when the photo camera is gphoto2): it is found and
 // opens; nothing is captured. On failure, the fix for that kind of fault.
 PreflightCheck CheckStillCamera(StillCamera& camera);
 

@@ -26,6 +26,19 @@ bool ControllerGains::IsValid(std::string* error) const {
   return true;
 }
 
+double ControllerGains::Correctable(double displacement_px) const {
+  return std::abs(displacement_px) >= dead_band_px ? displacement_px : 0.0;
+}
+
+double ControllerGains::BeyondDeadBand(double displacement_px) const {
+  return std::max(0.0, std::abs(displacement_px) - dead_band_px);
+}
+
+ServoTargets ControllerGains::LimitRate(const ServoTargets& target, const ServoTargets& current,
+                                        double dt_s) const {
+  return ApplyRateLimit(target, current, rate_limit_deg_per_s, dt_s);
+}
+
 ServoTargets ApplyRateLimit(const ServoTargets& target, const ServoTargets& current,
                             double rate_deg_per_s, double dt_s) {
   if (rate_deg_per_s <= 0.0) return target;

@@ -37,6 +37,26 @@ struct ControllerGains {
   double integral_limit_px = 50;
 
   bool IsValid(std::string* error) const;
+
+  // The dead band and the rate limit, applied here once for every kind of controller.
+  // `displacement_px` where it is at least the dead band, else 0: what a controller corrects.
+  double Correctable(double displacement_px) const;
+  // [px] how far |displacement_px| reaches beyond the dead band; 0 inside it.
+  double BeyondDeadBand(double displacement_px) const;
+  // ApplyRateLimit at this rate limit.
+  ServoTargets LimitRate(const ServoTargets& target, const ServoTargets& current,
+                         double dt_s) const;
+
+  // The operator-set fields by the names of their settings (kapfix.v1.Gains), listed once so
+  // that the agent copies its settings in by name: visit(name, field) for each.
+  template <typename Visitor>
+  void VisitFields(Visitor&& visit) {
+    visit("p", p);
+    visit("i", i);
+    visit("d", d);
+    visit("dead_band_px", dead_band_px);
+    visit("rate_limit_deg_per_s", rate_limit_deg_per_s);
+  }
 };
 
 // Turns one frame's measurement into servo targets. `current` is what the frame was seen

@@ -5,13 +5,6 @@
 #include <stdexcept>
 
 namespace kapfix {
-namespace {
-
-double InsideDeadBand(double displacement_px, double dead_band_px) {
-  return std::abs(displacement_px) >= dead_band_px ? displacement_px : 0.0;
-}
-
-}  // namespace
 
 PidController::PidController(ControllerGains gains, LensCalibration calibration) : gains_(gains) {
   std::string error;
@@ -50,8 +43,7 @@ ServoTargets PidController::Update(const ControlInput& input, const ServoTargets
     has_previous_ = false;  // the next difference would span the gap
     return current;
   }
-  const cv::Point2d e(InsideDeadBand(d.x, gains_.dead_band_px),
-                      InsideDeadBand(d.y, gains_.dead_band_px));
+  const cv::Point2d e(gains_.Correctable(d.x), gains_.Correctable(d.y));
   const bool timed = std::isfinite(input.dt_s) && input.dt_s > 0.0;
   cv::Point2d derivative(0, 0);
   if (timed) {
@@ -69,7 +61,7 @@ ServoTargets PidController::Update(const ControlInput& input, const ServoTargets
   const cv::Point2d correction_px = gains_.p * e + gains_.i * integral_ + gains_.d * derivative;
   const ServoTargets target{current.pan_deg + correction_px.x * calibration_.pan_deg_per_px,
                             current.tilt_deg + correction_px.y * calibration_.tilt_deg_per_px};
-  return ApplyRateLimit(target, current, gains_.rate_limit_deg_per_s, input.dt_s);
+  return gains_.LimitRate(target, current, input.dt_s);
 }
 
 }  // namespace kapfix

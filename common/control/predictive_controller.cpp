@@ -165,7 +165,7 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
           *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
       predicting_tilt_ = true;
     }
-    return ApplyRateLimit(target, current, gains_.rate_limit_deg_per_s, input.dt_s);
+    return gains_.LimitRate(target, current, input.dt_s);
   }
 
   pan_estimator_.Add(current.pan_deg, d.x);
@@ -191,7 +191,7 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     const double persistence = predictor.skill_rms(SwingPredictor::Forecaster::kPersistence);
     if (trust->weight > 0.5) {
       // Inside the dead band both controllers leave the residual alone on purpose.
-      const double excess = std::max(0.0, std::abs(measured_px) - gains_.dead_band_px);
+      const double excess = gains_.BeyondDeadBand(measured_px);
       trust->residual_sq += kTrustRate * (excess * excess - trust->residual_sq);
       ++trust->graded;
     }
@@ -216,16 +216,15 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     if (!ahead || trust->weight == 0.0) return fallback_deg;
     *predicting = true;
     const double correction_px = *ahead - current_deg / deg_per_px;
-    const double forecast_deg = std::abs(correction_px) < gains_.dead_band_px
-                                    ? current_deg
-                                    : current_deg + gains_.p * correction_px * deg_per_px;
+    const double forecast_deg =
+        current_deg + gains_.p * gains_.Correctable(correction_px) * deg_per_px;
     return trust->weight * forecast_deg + (1.0 - trust->weight) * fallback_deg;
   };
   target.pan_deg = axis(pan_, &pan_trust_, d.x, current.pan_deg, calibration_.pan_deg_per_px,
                         proportional.pan_deg, &predicting_pan_);
   target.tilt_deg = axis(tilt_, &tilt_trust_, d.y, current.tilt_deg, calibration_.tilt_deg_per_px,
                          proportional.tilt_deg, &predicting_tilt_);
-  return ApplyRateLimit(target, current, gains_.rate_limit_deg_per_s, input.dt_s);
+  return gains_.LimitRate(target, current, input.dt_s);
 }
 
 }  // namespace kapfix

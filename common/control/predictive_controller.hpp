@@ -40,7 +40,7 @@ struct PredictiveOptions {
 // persistence forecasts best (the first frame or two, after a lost lock, a motion that is
 // not a swing) the axis falls back to ProportionalController with the same gains, which acts
 // on exactly that forecast; SwingPredictor says how the forecasters are chosen. The dead
-// band holds an axis whose correction is smaller than dead_band_px; the rate limit applies
+// band holds an axis whose correction is smaller than the gains' one; the rate limit applies
 // last; I and D are not used. A frame without a measurement is bridged by the forecast for a
 // few frames, then the servos hold.
 class PredictiveController final : public Controller {

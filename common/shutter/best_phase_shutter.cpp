@@ -18,6 +18,12 @@ std::string Px(double value) {
 
 }  // namespace
 
+std::optional<ShutterMode> ParseShutterMode(std::string_view text) {
+  if (text == "interval") return ShutterMode::kInterval;
+  if (text == "best-phase") return ShutterMode::kBestPhase;
+  return std::nullopt;
+}
+
 bool BestPhaseShutterOptions::IsValid(std::string* error) const {
   auto fail = [error](const std::string& message) {
     if (error) *error = message;

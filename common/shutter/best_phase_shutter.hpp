@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "common/shutter/view_forecaster.hpp"
 
@@ -12,6 +13,9 @@ enum class ShutterMode {
   kInterval,   // at once, on the frame after the request
   kBestPhase,  // at the quietest predicted moment of a window
 };
+
+// "interval" or "best-phase" (the settings schema's words); nothing for another.
+std::optional<ShutterMode> ParseShutterMode(std::string_view text);
 
 struct BestPhaseShutterOptions {
   ShutterMode mode = ShutterMode::kInterval;
@@ -36,6 +40,16 @@ struct BestPhaseShutterOptions {
   // ranges, checked by the caller), frame period > 0, tolerance and weight ≥ 0, 1…4096
   // scenarios; and the window not longer than the cap.
   bool IsValid(std::string* error) const;
+
+  // The operator-set fields by the names of their settings (kapfix.v1.PhotoSettings), listed
+  // once so that the agent copies its settings in by name.
+  template <typename Visitor>
+  void VisitFields(Visitor&& visit) {
+    visit("shutter", mode, ParseShutterMode);
+    visit("window_s", window_s);
+    visit("window_cap_s", window_cap_s);
+    visit("exposure_ms", exposure_ms);
+  }
 };
 
 // A photo the shutter fired, with the loop's state on its frame.

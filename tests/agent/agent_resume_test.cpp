@@ -96,7 +96,7 @@ void FlyAndSetGainsAndSlice(const AgentConfig& config) {
 TEST(AgentResumeTest, ARestartedAgentFixatesItsSliceAgainWithTheOperatorsGains) {
   TempDir base;
   const AgentConfig config = KiteConfigIn(base.path());
-  ASSERT_NE(config.controller.kp, 0.6) << "the test needs a configured P other than the operator's";
+  ASSERT_NE(config.gains.p(), 0.6) << "the test needs a configured P other than the operator's";
   FlyAndSetGainsAndSlice(config);
 
   RunningAgent restarted(config, Simulated());
@@ -123,7 +123,7 @@ TEST(AgentResumeTest, NoResumeStartsFromTheConfiguration) {
       states, [](const kapfix::v1::AgentState& s) { return s.mode() == kapfix::v1::MODE_FIXATE; });
   ASSERT_TRUE(state.has_value());
   EXPECT_FALSE(state->resumed());
-  EXPECT_FLOAT_EQ(state->gains().p(), static_cast<float>(config.controller.kp));
+  EXPECT_FLOAT_EQ(state->gains().p(), static_cast<float>(config.gains.p()));
   EXPECT_EQ(state->slice(), static_cast<std::uint32_t>((config.search.slices + 1) / 2));
 }
 
@@ -141,7 +141,7 @@ TEST(AgentResumeTest, ACorruptRecordIsSetAsideAndTheAgentStartsFresh) {
       states, [](const kapfix::v1::AgentState& s) { return s.mode() == kapfix::v1::MODE_FIXATE; });
   ASSERT_TRUE(state.has_value());
   EXPECT_FALSE(state->resumed());
-  EXPECT_FLOAT_EQ(state->gains().p(), static_cast<float>(config.controller.kp));
+  EXPECT_FLOAT_EQ(state->gains().p(), static_cast<float>(config.gains.p()));
   EXPECT_TRUE(fs::exists(record.string() + ".bad"));
 }
 

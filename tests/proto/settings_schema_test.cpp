@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <set>
 
 #include "kapfix/v1/command.pb.h"
@@ -106,6 +107,54 @@ TEST(SettingsSchemaTest, EveryKeyIsUnique) {
     EXPECT_TRUE(keys.insert(entry.options->key()).second) << entry.options->key();
   }
   EXPECT_GE(keys.size(), 27u);  // every key kapfix-ctl had before the schema
+}
+
+TEST(SettingsSchemaTest, EveryInitialValueParsesAndIsInItsRange) {
+  for (const SettingEntry& entry : SettingEntries()) {
+    if (entry.command_field == entry.field) continue;  // a scalar command: no message to fill
+    std::unique_ptr<google::protobuf::Message> settings(
+        google::protobuf::MessageFactory::generated_factory()
+            ->GetPrototype(entry.field->containing_type())
+            ->New());
+    std::string error;
+    EXPECT_TRUE(SetInitialSettings(settings.get(), &error)) << error;
+    EXPECT_EQ(CheckSettings(*settings, ""), "") << entry.field->full_name();
+  }
+}
+
+TEST(SettingsSchemaTest, InitialSettingsSetEveryFieldThatHasAnInitialValue) {
+  const Gains gains = InitialSettings<Gains>();
+  EXPECT_EQ(gains.controller(), CONTROLLER_KIND_PREDICTIVE);
+  EXPECT_TRUE(gains.has_p());
+  EXPECT_FLOAT_EQ(gains.rate_limit_deg_per_s(), 90);
+  // A field without one stays absent (its group's defaults live in the agent's config).
+  EXPECT_FALSE(InitialSettings<CameraSettings>().has_gain_db());
+}
+
+TEST(SettingsSchemaTest, MergeSettingsReplacesWhatIsPresentAndKeepsAnUnspecifiedEnum) {
+  Gains held = InitialSettings<Gains>();
+  Gains update;
+  update.set_p(0.3F);
+  update.set_controller(CONTROLLER_KIND_UNSPECIFIED);
+  MergeSettings(update, &held);
+  EXPECT_FLOAT_EQ(held.p(), 0.3F);
+  EXPECT_EQ(held.controller(), CONTROLLER_KIND_PREDICTIVE);
+  EXPECT_FLOAT_EQ(held.dead_band_px(), 0.5F);  // absent: kept
+  PhotoSettings photo = InitialSettings<PhotoSettings>();
+  PhotoSettings unspecified;
+  unspecified.set_camera(PHOTO_CAMERA_UNSPECIFIED);  // present, but "unchanged"
+  MergeSettings(unspecified, &photo);
+  EXPECT_EQ(photo.camera(), PHOTO_CAMERA_AGENT);
+}
+
+TEST(SettingsSchemaTest, AnEnumWordReadsBothWays) {
+  EXPECT_EQ(WordOf(CONTROLLER_KIND_PID), "pid");
+  EXPECT_EQ(WordOf(SHUTTER_BEST_PHASE), "best-phase");
+  EXPECT_EQ(WordOf(CONTROLLER_KIND_UNSPECIFIED), "");
+  EXPECT_EQ(ValueOfWord(*ControllerKind_descriptor(), "predictive")->number(),
+            CONTROLLER_KIND_PREDICTIVE);
+  EXPECT_EQ(ValueOfWord(*ControllerKind_descriptor(), "bang-bang"), nullptr);
+  EXPECT_EQ(ValueOfWord(*ControllerKind_descriptor(), ""), nullptr);
 }
 
 }  // namespace

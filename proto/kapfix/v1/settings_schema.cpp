@@ -1,9 +1,12 @@
 #include "kapfix/v1/settings_schema.hpp"
 
+#include <google/protobuf/text_format.h>
+
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <memory>
 
 #include "kapfix/v1/command.pb.h"
 
@@ -152,6 +155,47 @@ std::string SettingWord(const EnumValueDescriptor& value) {
       value.name().starts_with(prefix) ? value.name().substr(prefix.size()) : value.name();
   for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return word;
+}
+
+const EnumValueDescriptor* ValueOfWord(const google::protobuf::EnumDescriptor& type,
+                                       std::string_view word) {
+  for (int i = 0; i < type.value_count(); ++i) {
+    if (!word.empty() && SettingWord(*type.value(i)) == word) return type.value(i);
+  }
+  return nullptr;
+}
+
+void MergeSettings(const Message& from, Message* into) {
+  std::unique_ptr<Message> update(from.New());
+  update->CopyFrom(from);
+  const Descriptor& type = *from.GetDescriptor();
+  const Reflection& reflection = *update->GetReflection();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const FieldDescriptor* field = type.field(i);
+    if (field->cpp_type() == FieldDescriptor::CPPTYPE_ENUM && !field->is_repeated() &&
+        reflection.GetEnumValue(*update, field) == 0) {
+      reflection.ClearField(update.get(), field);
+    }
+  }
+  into->MergeFrom(*update);
+}
+
+bool SetInitialSettings(Message* message, std::string* error) {
+  const Descriptor& type = *message->GetDescriptor();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const FieldDescriptor& field = *type.field(i);
+    const SettingOptions* options = SettingOf(field);
+    if (options == nullptr || options->initial().empty()) continue;
+    if (!google::protobuf::TextFormat::ParseFieldValueFromString(options->initial(), &field,
+                                                                 message)) {
+      if (error) {
+        *error = field.full_name() + ": initial value \"" + options->initial() + "\" is not a " +
+                 field.cpp_type_name() + " in protobuf text format";
+      }
+      return false;
+    }
+  }
+  return true;
 }
 
 const std::vector<SettingEntry>& SettingEntries() {

@@ -7,8 +7,10 @@
 // and an out-of-range value gets the same reason from every one of them.
 
 #include <google/protobuf/descriptor.h>
+#include <google/protobuf/generated_enum_reflection.h>
 #include <google/protobuf/message.h>
 
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +52,40 @@ std::string CheckSettings(const google::protobuf::Message& message, std::string_
 // without the enum's prefix in lower case (CONTROLLER_KIND_PID → "pid"). Empty for
 // *_UNSPECIFIED.
 std::string SettingWord(const google::protobuf::EnumValueDescriptor& value);
+
+// SettingWord of a generated enum's value (kapfix::v1::CONTROLLER_KIND_PID → "pid"); empty for
+// *_UNSPECIFIED or a number the enum does not have.
+template <typename Enum>
+std::string WordOf(Enum value) {
+  const auto* described =
+      google::protobuf::GetEnumDescriptor<Enum>()->FindValueByNumber(static_cast<int>(value));
+  return described == nullptr ? std::string() : SettingWord(*described);
+}
+
+// The enum value whose SettingWord is `word` ("pid" → CONTROLLER_KIND_PID); nullptr for none.
+const google::protobuf::EnumValueDescriptor* ValueOfWord(
+    const google::protobuf::EnumDescriptor& type, std::string_view word);
+
+// A settings command's partial update of the settings held: protobuf's merge (a field present
+// replaces, an absent one keeps; an empty string keeps), except that an enum at *_UNSPECIFIED
+// keeps the held value even where the field has presence (settings.proto: "unchanged").
+// `from` and `into` are the same message type.
+void MergeSettings(const google::protobuf::Message& from, google::protobuf::Message* into);
+
+// Sets every setting field of `message` whose option has an `initial` value to it: the agent's
+// defaults, written once next to the field's range. False with "<message>.<field>: ..." when
+// an initial value does not parse as the field's type (a bug in the schema).
+bool SetInitialSettings(google::protobuf::Message* message, std::string* error);
+
+// `Settings` with its initial values; throws std::logic_error for a schema that has a bad one
+// (the schema's test catches that first).
+template <typename Settings>
+Settings InitialSettings() {
+  Settings settings;
+  std::string error;
+  if (!SetInitialSettings(&settings, &error)) throw std::logic_error(error);
+  return settings;
+}
 
 // A setting as kapfix-ctl and the station list it: the command field that carries it
 // ("set_gains") and its field within that message (nullptr when the command field is the

@@ -43,7 +43,7 @@ TEST(CommandExecutorTest, SetGainsUpdatesTheSettings) {
   Rig rig(temp.path());
   const kapfix::v1::Reply reply = rig.executor.Execute(Gains(0.4F));
   EXPECT_TRUE(reply.ok()) << reply.reason();
-  EXPECT_FLOAT_EQ(static_cast<float>(rig.state.settings()->controller.kp), 0.4F);
+  EXPECT_FLOAT_EQ(static_cast<float>(rig.state.settings()->gains.p()), 0.4F);
 }
 
 TEST(CommandExecutorTest, SetGainsPublishesTheNewState) {
@@ -61,8 +61,8 @@ TEST(CommandExecutorTest, OutOfRangeGainIsRefusedAndChangesNothing) {
   const kapfix::v1::Reply reply = rig.executor.Execute(Gains(25.0F));  // kp is (0, 10]
   EXPECT_FALSE(reply.ok());
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
-  EXPECT_NE(reply.reason().find("controller.kp"), std::string::npos) << reply.reason();
-  EXPECT_DOUBLE_EQ(rig.state.settings()->controller.kp, ControllerConfig{}.kp);
+  EXPECT_NE(reply.reason().find("gains.p"), std::string::npos) << reply.reason();
+  EXPECT_DOUBLE_EQ(rig.state.settings()->gains.p(), AgentConfig{}.gains.p());
 }
 
 TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
@@ -84,7 +84,7 @@ TEST(CommandExecutorTest, SetPhotoIsAppliedShownAndReachesTheShutter) {
   command.mutable_set_photo()->set_exposure_ms(5.0F);
   const kapfix::v1::Reply reply = rig.executor.Execute(command);
   ASSERT_TRUE(reply.ok()) << reply.reason();
-  EXPECT_EQ(rig.state.settings()->photos.shutter, ShutterMode::kBestPhase);
+  EXPECT_EQ(rig.state.settings()->photo.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
   EXPECT_EQ(rig.executor.State().photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
   EXPECT_FLOAT_EQ(rig.executor.State().photo().exposure_ms(), 5.0F);
 
@@ -113,8 +113,9 @@ TEST(CommandExecutorTest, SetPhotoWindowBeyondTheCapIsRefused) {
   const kapfix::v1::Reply reply = rig.executor.Execute(command);
   EXPECT_FALSE(reply.ok());
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
-  EXPECT_NE(reply.reason().find("window_cap_s"), std::string::npos) << reply.reason();
-  EXPECT_DOUBLE_EQ(rig.state.settings()->photos.window_s, 0.0);
+  // The one check across the two fields is the shutter's own (BestPhaseShutterOptions).
+  EXPECT_NE(reply.reason().find("longer than its cap"), std::string::npos) << reply.reason();
+  EXPECT_FLOAT_EQ(rig.state.settings()->photo.window_s(), 0.0F);
 }
 
 TEST(CommandExecutorTest, TakePhotoIsAcceptedWhenTheFolderIsWritable) {

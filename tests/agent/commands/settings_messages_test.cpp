@@ -17,17 +17,17 @@ const LensProfile* FindLens(const AgentConfig& config, const std::string& name) 
 
 TEST(SettingsMessagesTest, GainsUpdateChangesOnlyTheGivenFields) {
   AgentConfig config;
-  const ControllerConfig before = config.controller;
+  const kapfix::v1::Gains before = config.gains;
   kapfix::v1::Command command;
   command.mutable_set_gains()->set_p(0.25F);
   std::string error;
   ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
-  EXPECT_DOUBLE_EQ(config.controller.kp, 0.25);
-  EXPECT_EQ(config.controller.kind, before.kind);
-  EXPECT_DOUBLE_EQ(config.controller.ki, before.ki);
-  EXPECT_DOUBLE_EQ(config.controller.kd, before.kd);
-  EXPECT_DOUBLE_EQ(config.controller.dead_band_px, before.dead_band_px);
-  EXPECT_DOUBLE_EQ(config.controller.max_rate_deg_per_s, before.max_rate_deg_per_s);
+  EXPECT_DOUBLE_EQ(config.gains.p(), 0.25);
+  EXPECT_EQ(config.gains.controller(), before.controller());
+  EXPECT_DOUBLE_EQ(config.gains.i(), before.i());
+  EXPECT_DOUBLE_EQ(config.gains.d(), before.d());
+  EXPECT_DOUBLE_EQ(config.gains.dead_band_px(), before.dead_band_px());
+  EXPECT_DOUBLE_EQ(config.gains.rate_limit_deg_per_s(), before.rate_limit_deg_per_s());
 }
 
 TEST(SettingsMessagesTest, SearchUpdateChangesOnlyTheGivenFields) {
@@ -55,9 +55,9 @@ TEST(SettingsMessagesTest, VideoUpdateChangesOnlyTheGivenFields) {
   command.mutable_set_video()->set_fps(5);
   std::string error;
   ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
-  EXPECT_DOUBLE_EQ(config.video.fps, 5);
-  EXPECT_EQ(config.video.quality, VideoConfig{}.quality);
-  EXPECT_DOUBLE_EQ(config.video.scale, VideoConfig{}.scale);
+  EXPECT_FLOAT_EQ(config.video.fps(), 5);
+  EXPECT_EQ(config.video.jpeg_quality(), AgentConfig{}.video.jpeg_quality());
+  EXPECT_FLOAT_EQ(config.video.scale(), AgentConfig{}.video.scale());
 }
 
 TEST(SettingsMessagesTest, InvalidValueIsRefusedNamingTheFieldAndChangesNothing) {
@@ -67,9 +67,9 @@ TEST(SettingsMessagesTest, InvalidValueIsRefusedNamingTheFieldAndChangesNothing)
   command.mutable_set_gains()->set_i(50.0F);  // gains are 0…10
   std::string error;
   EXPECT_FALSE(ApplySettingsCommand(command, &config, &error));
-  EXPECT_NE(error.find("controller.ki"), std::string::npos) << error;
-  EXPECT_DOUBLE_EQ(config.controller.kp, ControllerConfig{}.kp);  // the valid part not applied
-  EXPECT_DOUBLE_EQ(config.controller.ki, ControllerConfig{}.ki);
+  EXPECT_NE(error.find("gains.i"), std::string::npos) << error;
+  EXPECT_DOUBLE_EQ(config.gains.p(), AgentConfig{}.gains.p());  // the valid part not applied
+  EXPECT_DOUBLE_EQ(config.gains.i(), AgentConfig{}.gains.i());
 }
 
 TEST(SettingsMessagesTest, UnknownStrategyIsRefusedNamingTheField) {
@@ -184,8 +184,8 @@ TEST(SettingsMessagesTest, PhotoIntervalIsApplied) {
 
 TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
   AgentConfig config;
-  config.controller.kind = ControllerKind::kPid;
-  config.controller.kp = 0.5;
+  config.gains.set_controller(kapfix::v1::CONTROLLER_KIND_PID);
+  config.gains.set_p(0.5F);
   config.search.strategy = "h21";
   config.search.patch_px = 50;
   config.search.slices = 7;
@@ -195,8 +195,8 @@ TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
   config.camera.width = 800;
   config.camera.height = 600;
   config.photos.interval_s = 10;
-  config.video.fps = 15;
-  config.video.quality = 70;
+  config.video.set_fps(15);
+  config.video.set_jpeg_quality(70);
   kapfix::v1::AgentState state;
   FillSettings(config, &state);
   EXPECT_EQ(state.gains().controller(), kapfix::v1::CONTROLLER_KIND_PID);
@@ -219,7 +219,7 @@ TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
 TEST(SettingsMessagesTest, FilledSettingsAppliedBackChangeNothing) {
   AgentConfig config;
   config.search.strategy = "h23";
-  config.controller.kp = 0.5;
+  config.gains.set_p(0.5F);
   kapfix::v1::AgentState state;
   FillSettings(config, &state);
   AgentConfig copy;
@@ -231,7 +231,7 @@ TEST(SettingsMessagesTest, FilledSettingsAppliedBackChangeNothing) {
   ASSERT_TRUE(ApplySettingsCommand(gains, &copy, &error)) << error;
   ASSERT_TRUE(ApplySettingsCommand(search, &copy, &error)) << error;
   EXPECT_EQ(copy.search.strategy, "h23");
-  EXPECT_DOUBLE_EQ(copy.controller.kp, 0.5);
+  EXPECT_DOUBLE_EQ(copy.gains.p(), 0.5);
   EXPECT_EQ(copy.search.patch_px, config.search.patch_px);
   EXPECT_EQ(copy.search.sampling.kind, config.search.sampling.kind);
 }
@@ -246,10 +246,10 @@ TEST(SettingsMessagesTest, SetPhotoRoundTripsThroughTheState) {
   command.mutable_set_photo()->set_exposure_ms(4.0F);
   std::string error;
   ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
-  EXPECT_EQ(config.photos.shutter, ShutterMode::kBestPhase);
-  EXPECT_DOUBLE_EQ(config.photos.window_s, 2.5);
-  EXPECT_DOUBLE_EQ(config.photos.window_cap_s, 10.0);  // not named: kept
-  EXPECT_DOUBLE_EQ(config.photos.exposure_ms, 4.0);
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(config.photo.window_s(), 2.5F);
+  EXPECT_FLOAT_EQ(config.photo.window_cap_s(), 10.0F);  // not named: kept
+  EXPECT_FLOAT_EQ(config.photo.exposure_ms(), 4.0F);
   kapfix::v1::AgentState state;
   FillSettings(config, &state);
   EXPECT_EQ(state.photo().shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
@@ -261,9 +261,22 @@ TEST(SettingsMessagesTest, SetPhotoRoundTripsThroughTheState) {
   kapfix::v1::Command back;
   *back.mutable_set_photo() = state.photo();
   ASSERT_TRUE(ApplySettingsCommand(back, &copy, &error)) << error;
-  EXPECT_EQ(copy.photos.shutter, ShutterMode::kBestPhase);
-  EXPECT_DOUBLE_EQ(copy.photos.window_s, 2.5);
-  EXPECT_DOUBLE_EQ(copy.photos.exposure_ms, 4.0);
+  EXPECT_EQ(copy.photo.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(copy.photo.window_s(), 2.5F);
+  EXPECT_FLOAT_EQ(copy.photo.exposure_ms(), 4.0F);
+}
+
+// An enum at *_UNSPECIFIED means "unchanged" even where the field has presence.
+TEST(SettingsMessagesTest, AnUnspecifiedShutterKeepsTheHeldOne) {
+  AgentConfig config;
+  config.photo.set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
+  kapfix::v1::Command command;
+  command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_UNSPECIFIED);
+  command.mutable_set_photo()->set_window_s(2.0F);
+  std::string error;
+  ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(config.photo.window_s(), 2.0F);
 }
 
 TEST(SettingsMessagesTest, SetPhotoWindowBeyondTheCapChangesNothing) {
@@ -274,9 +287,9 @@ TEST(SettingsMessagesTest, SetPhotoWindowBeyondTheCapChangesNothing) {
   command.mutable_set_photo()->set_window_s(3.0F);
   std::string error;
   EXPECT_FALSE(ApplySettingsCommand(command, &config, &error));
-  EXPECT_NE(error.find("longer than photos.window_cap_s"), std::string::npos) << error;
-  EXPECT_EQ(config.photos.shutter, ShutterMode::kInterval);
-  EXPECT_DOUBLE_EQ(config.photos.window_cap_s, 10.0);
+  EXPECT_NE(error.find("longer than its cap"), std::string::npos) << error;
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_INTERVAL);
+  EXPECT_FLOAT_EQ(config.photo.window_cap_s(), 10.0F);
 }
 
 }  // namespace

@@ -119,9 +119,9 @@ TEST(StateKeeperTest, SetSettingsPublishesTheNewState) {
   RecordingStreamSink sink;
   StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
   AgentConfig settings;
-  settings.controller.kp = 0.3;
+  settings.gains.set_p(0.3F);
   keeper.SetSettings(settings);
-  EXPECT_DOUBLE_EQ(keeper.settings()->controller.kp, 0.3);
+  EXPECT_FLOAT_EQ(keeper.settings()->gains.p(), 0.3F);
   const auto states = sink.Messages<kapfix::v1::AgentState>();
   ASSERT_EQ(states.size(), 1u);
   EXPECT_FLOAT_EQ(states[0].gains().p(), 0.3F);
@@ -168,7 +168,7 @@ TEST(StateKeeperTest, ANewerStateIsNeverFollowedByAnOlderOne) {
   std::thread control([&keeper] { keeper.OnModeChanged(AgentMode::kFixate, 0); });
   photos.WaitUntilHeld();
   AgentConfig settings;
-  settings.controller.kp = 0.75;
+  settings.gains.set_p(0.75F);
   keeper.SetSettings(settings);  // must not wait for the held thread
   photos.Release();
   control.join();
@@ -211,7 +211,7 @@ TEST(StateKeeperTest, ARefusedUpdateChangesAndPublishesNothing) {
   std::string error;
   const auto updated = keeper.UpdateSettings(
       [](AgentConfig* config, std::string* why) {
-        config->controller.kp = 99;
+        config->gains.set_p(99);
         *why = "kp too large";
         return false;
       },
@@ -226,12 +226,12 @@ TEST(StateKeeperTest, ASnapshotStaysAsItWasAfterAChange) {
   RecordingStreamSink sink;
   StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
   const auto snapshot = keeper.settings();
-  const double kp = snapshot->controller.kp;
+  const double kp = snapshot->gains.p();
   AgentConfig changed;
-  changed.controller.kp = kp / 2;
+  changed.gains.set_p(static_cast<float>(kp / 2));
   keeper.SetSettings(changed);
-  EXPECT_DOUBLE_EQ(snapshot->controller.kp, kp);
-  EXPECT_DOUBLE_EQ(keeper.settings()->controller.kp, kp / 2);
+  EXPECT_DOUBLE_EQ(snapshot->gains.p(), kp);
+  EXPECT_DOUBLE_EQ(keeper.settings()->gains.p(), kp / 2);
 }
 
 TEST(StateKeeperTest, StateCountsTheStoredPhotosAndSaysSimulated) {

@@ -16,7 +16,7 @@ TEST(StateRepublisherTest, ALostStateIsPublishedAgainWithoutAnotherChange) {
   StateKeeper keeper(AgentConfig{}, sink, true, nullptr);
   sink.RefuseNext(1);  // the link drops the state of this change
   AgentConfig settings;
-  settings.controller.kp = 0.75;
+  settings.gains.set_p(0.75F);
   keeper.SetSettings(settings);
   ASSERT_TRUE(sink.Messages<kapfix::v1::AgentState>().empty());
 

@@ -48,6 +48,30 @@ TEST(AgentConfigTest, DefaultConfigIsValid) {
   EXPECT_TRUE(AgentConfig{}.IsValid(&error)) << error;
 }
 
+// The defaults the agent had before they became the fields' `initial` option (issue 11).
+TEST(AgentConfigTest, DefaultGainsAreTheSchemasInitialValues) {
+  const kapfix::v1::Gains& gains = AgentConfig().gains;
+  EXPECT_EQ(gains.controller(), kapfix::v1::CONTROLLER_KIND_PREDICTIVE);
+  EXPECT_FLOAT_EQ(gains.p(), 0.8F);
+  EXPECT_FLOAT_EQ(gains.i(), 0);
+  EXPECT_FLOAT_EQ(gains.d(), 0);
+  EXPECT_FLOAT_EQ(gains.dead_band_px(), 0.5F);
+  EXPECT_FLOAT_EQ(gains.rate_limit_deg_per_s(), 90);
+  EXPECT_TRUE(gains.has_i()) << "a zero default is set, not absent";
+}
+
+TEST(AgentConfigTest, AnUnsetSettingIsInvalidNamingIt) {
+  AgentConfig config;
+  config.gains.clear_dead_band_px();
+  std::string error;
+  EXPECT_FALSE(config.IsValid(&error));
+  EXPECT_EQ(error, "gains.dead_band_px: not set");
+  config = AgentConfig();
+  config.gains.set_controller(kapfix::v1::CONTROLLER_KIND_UNSPECIFIED);
+  EXPECT_FALSE(config.IsValid(&error));
+  EXPECT_EQ(error, "gains.controller: not set");
+}
+
 TEST(AgentConfigTest, DefaultConfigRunsInSimulation) {
   const AgentConfig config;
   EXPECT_EQ(config.camera.backend, CameraBackend::kSim);

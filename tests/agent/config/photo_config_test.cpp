@@ -1,6 +1,6 @@
-// The photos section's shutter settings (issue 13): read from the config file with the same
-// strictness as the other keys, checked against the settings schema, and a window longer than
-// its cap refused.
+// The shutter settings (issue 13), held as kapfix.v1.PhotoSettings in AgentConfig::photo
+// (issue 11): read from the config file with the same strictness as the other keys, checked
+// against the settings schema, and a window longer than its cap refused.
 #include "agent/config/photo_config.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 
 #include "agent/config/agent_config.hpp"
 #include "agent/config_file/agent_config_file.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
@@ -27,14 +28,14 @@ std::string Load(const TempDir& dir, const std::string& text, AgentConfig* confi
 }
 
 TEST(PhotoConfigTest, DefaultsAreIntervalOnePeriodTenSecondCapTenMillisecondsAgentCamera) {
-  const PhotoConfig photos;
-  EXPECT_EQ(photos.shutter, ShutterMode::kInterval);
-  EXPECT_EQ(photos.window_s, 0.0);
-  EXPECT_EQ(photos.window_cap_s, 10.0);
-  EXPECT_EQ(photos.exposure_ms, 10.0);
-  EXPECT_EQ(photos.camera, PhotoCameraKind::kAgent);
+  const AgentConfig config;
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_INTERVAL);
+  EXPECT_EQ(config.photo.window_s(), 0.0F);
+  EXPECT_EQ(config.photo.window_cap_s(), 10.0F);
+  EXPECT_EQ(config.photo.exposure_ms(), 10.0F);
+  EXPECT_EQ(config.photo.camera(), kapfix::v1::PHOTO_CAMERA_AGENT);
   std::string error;
-  EXPECT_TRUE(photos.IsValid(&error)) << error;
+  EXPECT_TRUE(config.IsValid(&error)) << error;
 }
 
 TEST(PhotoConfigTest, ConfigFileReadsTheShutterKeys) {
@@ -45,11 +46,11 @@ TEST(PhotoConfigTest, ConfigFileReadsTheShutterKeys) {
                      "window_cap_s": 4, "exposure_ms": 20, "camera": "PHOTO_CAMERA_GPHOTO2"}}})",
                  &config),
             "");
-  EXPECT_EQ(config.photos.shutter, ShutterMode::kBestPhase);
-  EXPECT_DOUBLE_EQ(config.photos.window_s, 2.5);
-  EXPECT_DOUBLE_EQ(config.photos.window_cap_s, 4.0);
-  EXPECT_DOUBLE_EQ(config.photos.exposure_ms, 20.0);
-  EXPECT_EQ(config.photos.camera, PhotoCameraKind::kGphoto2);
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_BEST_PHASE);
+  EXPECT_FLOAT_EQ(config.photo.window_s(), 2.5F);
+  EXPECT_FLOAT_EQ(config.photo.window_cap_s(), 4.0F);
+  EXPECT_FLOAT_EQ(config.photo.exposure_ms(), 20.0F);
+  EXPECT_EQ(config.photo.camera(), kapfix::v1::PHOTO_CAMERA_GPHOTO2);
 }
 
 TEST(PhotoConfigTest, UnknownShutterWordListsTheChoices) {
@@ -71,23 +72,24 @@ TEST(PhotoConfigTest, WrongTypeOfExposureIsAnError) {
 }
 
 TEST(PhotoConfigTest, WindowLongerThanTheCapIsRefused) {
-  PhotoConfig photos;
-  photos.window_s = 12;
-  photos.window_cap_s = 10;
+  AgentConfig config;
+  config.photo.set_window_s(12);
+  config.photo.set_window_cap_s(10);
   std::string error;
-  EXPECT_FALSE(photos.IsValid(&error));
-  EXPECT_NE(error.find("photos.window_s = 12"), std::string::npos) << error;
-  EXPECT_NE(error.find("longer than photos.window_cap_s = 10"), std::string::npos) << error;
+  EXPECT_FALSE(config.IsValid(&error));
+  EXPECT_EQ(error,
+            "photo: shutter window 12.00 s is longer than its cap 10.00 s: shorten the window or "
+            "raise the cap");
 }
 
 TEST(PhotoConfigTest, ExposureThatIsNotPositiveIsRefused) {
-  PhotoConfig photos;
-  photos.exposure_ms = 0;
+  AgentConfig config;
+  config.photo.set_exposure_ms(0);
   std::string error;
-  EXPECT_FALSE(photos.IsValid(&error));
-  EXPECT_NE(error.find("photos.exposure_ms = 0"), std::string::npos) << error;
-  photos.exposure_ms = -5;
-  EXPECT_FALSE(photos.IsValid(&error));
+  EXPECT_FALSE(config.IsValid(&error));
+  EXPECT_EQ(error, "photo.exposure_ms = 0: must be in [0.01, 2000] ms");
+  config.photo.set_exposure_ms(-5);
+  EXPECT_FALSE(config.IsValid(&error));
 }
 
 TEST(PhotoConfigTest, WindowBeyondTheSchemaIsRefusedFromTheFile) {
@@ -98,10 +100,11 @@ TEST(PhotoConfigTest, WindowBeyondTheSchemaIsRefusedFromTheFile) {
   EXPECT_NE(error.find("window_s = 40"), std::string::npos) << error;
 }
 
-TEST(PhotoConfigTest, ShutterWordsReadBack) {
-  for (const ShutterMode mode : {ShutterMode::kInterval, ShutterMode::kBestPhase}) {
-    EXPECT_EQ(ParseShutterMode(ToString(mode)), mode);
-  }
+TEST(PhotoConfigTest, ShutterWordsAreTheSchemas) {
+  EXPECT_EQ(ParseShutterMode(kapfix::v1::WordOf(kapfix::v1::SHUTTER_INTERVAL)),
+            ShutterMode::kInterval);
+  EXPECT_EQ(ParseShutterMode(kapfix::v1::WordOf(kapfix::v1::SHUTTER_BEST_PHASE)),
+            ShutterMode::kBestPhase);
   EXPECT_FALSE(ParseShutterMode("best_phase"));
 }
 

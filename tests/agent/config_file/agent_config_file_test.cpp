@@ -102,13 +102,13 @@ TEST(AgentConfigSettingsTest, SettingsAreAppliedAsTheirCommands) {
       "photo_interval_s": 2}})",
                                &config, &error))
       << error;
-  EXPECT_EQ(config.controller.kind, ControllerKind::kPid);
-  EXPECT_DOUBLE_EQ(config.controller.kp, 0.5);
-  EXPECT_DOUBLE_EQ(config.controller.dead_band_px, 2);  // protobuf's lowerCamel name
+  EXPECT_EQ(config.gains.controller(), kapfix::v1::CONTROLLER_KIND_PID);
+  EXPECT_DOUBLE_EQ(config.gains.p(), 0.5);
+  EXPECT_DOUBLE_EQ(config.gains.dead_band_px(), 2);  // protobuf's lowerCamel name
   EXPECT_EQ(config.search.axis, SearchAxis::kBoth);
   EXPECT_EQ(config.search.patch_px, 64);
   EXPECT_FALSE(config.camera.exposure_us.has_value());
-  EXPECT_EQ(config.video.quality, 50);
+  EXPECT_EQ(config.video.jpeg_quality(), 50U);
   EXPECT_DOUBLE_EQ(config.photos.interval_s, 2);
 }
 

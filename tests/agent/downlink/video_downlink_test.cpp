@@ -39,11 +39,11 @@ TelemetryRecord FoundAt(double x_px, double y_px) {
   return record;
 }
 
-VideoConfig Video(double fps, double scale = 0.5) {
-  VideoConfig video;
-  video.fps = fps;
-  video.scale = scale;
-  video.quality = 80;
+kapfix::v1::VideoSettings Video(float fps, float scale = 0.5F) {
+  kapfix::v1::VideoSettings video;
+  video.set_fps(fps);
+  video.set_scale(scale);
+  video.set_jpeg_quality(80);
   return video;
 }
 

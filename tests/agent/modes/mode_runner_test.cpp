@@ -249,8 +249,8 @@ TEST(ModeRunnerTest, SettingsWithAnotherStrategyApplyBetweenFramesAndKeepFixatin
 // on the same frames, one told the same settings again midway, must command the same angles.
 TEST(ModeRunnerTest, SettingsThatChangeNothingKeepTheControllersState) {
   AgentConfig config = SmallConfig();
-  config.controller.kind = ControllerKind::kPid;
-  config.controller.ki = 0.2;  // an integral term: state a rebuild would lose
+  config.gains.set_controller(kapfix::v1::CONTROLLER_KIND_PID);
+  config.gains.set_i(0.2F);  // an integral term: state a rebuild would lose
   RecordingModeEvents events_a;
   RecordingModeEvents events_b;
   ModeRunner untouched(config, Options(AgentMode::kFixate), events_a);
@@ -270,14 +270,14 @@ TEST(ModeRunnerTest, SettingsThatChangeNothingKeepTheControllersState) {
 // runner told it midway must command exactly what the untouched one does, integral and all.
 TEST(ModeRunnerTest, AGainChangeKeepsTheControllersState) {
   AgentConfig config = SmallConfig();
-  config.controller.kind = ControllerKind::kPid;
-  config.controller.ki = 0.2;
+  config.gains.set_controller(kapfix::v1::CONTROLLER_KIND_PID);
+  config.gains.set_i(0.2F);
   RecordingModeEvents events_a;
   RecordingModeEvents events_b;
   ModeRunner untouched(config, Options(AgentMode::kFixate), events_a);
   ModeRunner changed(config, Options(AgentMode::kFixate), events_b);
   AgentConfig faster = config;
-  faster.controller.max_rate_deg_per_s = config.controller.max_rate_deg_per_s + 1;
+  faster.gains.set_rate_limit_deg_per_s(config.gains.rate_limit_deg_per_s() + 1.0F);
   const std::vector<CapturedFrame> frames = Swing(12);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (i == 6) changed.RequestSettings(faster);

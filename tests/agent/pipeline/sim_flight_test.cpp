@@ -12,10 +12,10 @@
 namespace kapfix::agent {
 namespace {
 
-AgentConfig KiteConfig(ControllerKind controller) {
+AgentConfig KiteConfig(kapfix::v1::ControllerKind controller) {
   AgentConfig config = BuiltInConfig(MotionKind::kKite);  // kapfix-agent without --config
   config.simulation.scene = std::string(KAPFIX_OPENCV_DATA_DIR) + "/aero1.jpg";
-  config.controller.kind = controller;
+  config.gains.set_controller(controller);
   // A private link per agent: tests run side by side.
   static int agents = 0;
   const std::string base =
@@ -54,7 +54,7 @@ FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
 }
 
 TEST(SimFlightTest, PredictiveHoldsTheKiteViewWithinFivePixels) {
-  const FlightFigures f = Fly(KiteConfig(ControllerKind::kPredictive), 200);
+  const FlightFigures f = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_PREDICTIVE), 200);
   EXPECT_EQ(f.frames, 200u);
   EXPECT_LT(f.rms_error_px, 5.0);
   EXPECT_LT(f.lock_lost_pct, 5.0);
@@ -66,7 +66,7 @@ TEST(SimFlightTest, ServosActuallyMove) {
   // swing's ±10 deg.
   AgentOptions options = Fast(100);
   options.keep_telemetry = true;
-  Agent agent(KiteConfig(ControllerKind::kPredictive), options);
+  Agent agent(KiteConfig(kapfix::v1::CONTROLLER_KIND_PREDICTIVE), options);
   agent.Run();
   double lo = 0, hi = 0;
   for (const TelemetryRecord& r : agent.telemetry().records()) {
@@ -78,13 +78,13 @@ TEST(SimFlightTest, ServosActuallyMove) {
 }
 
 TEST(SimFlightTest, IsDeterministic) {
-  const FlightFigures a = Fly(KiteConfig(ControllerKind::kP), 60);
-  const FlightFigures b = Fly(KiteConfig(ControllerKind::kP), 60);
+  const FlightFigures a = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_P), 60);
+  const FlightFigures b = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_P), 60);
   EXPECT_EQ(a.rms_error_px, b.rms_error_px);
 }
 
 TEST(SimFlightTest, AMissingSceneIsAClearError) {
-  AgentConfig config = KiteConfig(ControllerKind::kP);
+  AgentConfig config = KiteConfig(kapfix::v1::CONTROLLER_KIND_P);
   config.simulation.scene = "/nonexistent/scene.jpg";
   try {
     Agent agent(config, Fast(1));

@@ -20,13 +20,13 @@ TEST(StoredSettingsTest, StoredSettingsApplyOverTheConfiguration) {
   search.mutable_set_search()->set_patch_size_px(60);
   std::string error;
   ASSERT_TRUE(ApplyStoredSettings({gains, search}, &config, &error)) << error;
-  EXPECT_NEAR(config.controller.kp, 0.6, 1e-6);
+  EXPECT_NEAR(config.gains.p(), 0.6, 1e-6);
   EXPECT_EQ(config.search.patch_px, 60);
 }
 
 TEST(StoredSettingsTest, AStoredValueOutOfRangeIsRefusedByTheSchemaAndChangesNothing) {
   AgentConfig config;
-  const double kp = config.controller.kp;
+  const double kp = config.gains.p();
   kapfix::v1::Command good;
   good.mutable_set_gains()->set_i(0.1F);
   kapfix::v1::Command bad;
@@ -34,8 +34,8 @@ TEST(StoredSettingsTest, AStoredValueOutOfRangeIsRefusedByTheSchemaAndChangesNot
   std::string error;
   EXPECT_FALSE(ApplyStoredSettings({good, bad}, &config, &error));
   EXPECT_NE(error.find("set_gains.p"), std::string::npos) << error;
-  EXPECT_DOUBLE_EQ(config.controller.kp, kp);
-  EXPECT_DOUBLE_EQ(config.controller.ki, AgentConfig{}.controller.ki);
+  EXPECT_DOUBLE_EQ(config.gains.p(), kp);
+  EXPECT_DOUBLE_EQ(config.gains.i(), AgentConfig{}.gains.i());
 }
 
 TEST(StoredSettingsTest, ACorruptRecordIsSetAsideAndTheConfigurationStands) {
@@ -43,9 +43,9 @@ TEST(StoredSettingsTest, ACorruptRecordIsSetAsideAndTheConfigurationStands) {
   ResumeStore store(dir.path());
   std::ofstream(store.file()) << "{\"format\": 1, \"mode\": \"fix";  // cut short
   AgentConfig config;
-  config.controller.kp = 0.9;
+  config.gains.set_p(0.9F);
   EXPECT_FALSE(LoadResumeRecord(store, &config).has_value());
-  EXPECT_DOUBLE_EQ(config.controller.kp, 0.9);
+  EXPECT_FLOAT_EQ(config.gains.p(), 0.9F);
   EXPECT_FALSE(std::filesystem::exists(store.file()));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "resume.json.bad"));
 }
