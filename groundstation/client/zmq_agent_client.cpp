@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "kapfix/v1/envelope_codec.hpp"
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 
 namespace kapfix::station {
 

@@ -22,7 +22,7 @@
 #include "kapfix/v1/state.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
 #include "kapfix/v1/video.pb.h"
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 namespace {
 

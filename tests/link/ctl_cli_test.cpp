@@ -20,7 +20,7 @@
 #include "kapfix/v1/photo_sidecar.hpp"
 #include "kapfix/v1/telemetry.pb.h"
 #include "tests/link/link_test_support.hpp"
-#include "tools/ctl/session_reader.hpp"
+#include "link/session_reader.hpp"
 
 namespace kapfix::testing {
 namespace {

@@ -19,7 +19,7 @@
 
 #include "link/curve_key_pair.hpp"
 #include "tests/link/link_test_support.hpp"
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 
 namespace kapfix::testing {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "tools/ctl/session_reader.hpp"
+#include "link/session_reader.hpp"
 
 namespace kapfix::link {
 namespace {

@@ -12,7 +12,7 @@
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 namespace kapfix::ctl {
 namespace {

@@ -20,7 +20,7 @@
 #include "tools/ctl/commands/inbox.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
 #include "tools/ctl/message_text.hpp"
-#include "tools/ctl/photo_assembler.hpp"
+#include "link/photo_assembler.hpp"
 #include "tools/ctl/photo_saving.hpp"
 
 namespace kapfix::ctl {

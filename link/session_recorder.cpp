@@ -1,4 +1,4 @@
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 #include <array>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 
 #include <algorithm>
 #include <array>
@@ -20,8 +20,8 @@
 
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
-#include "tools/ctl/handshake_monitor.hpp"
-#include "tools/ctl/wake_signal.hpp"
+#include "link/handshake_monitor.hpp"
+#include "link/wake_signal.hpp"
 
 namespace kapfix::link {
 namespace {

@@ -1,10 +1,10 @@
-#include "tools/ctl/session_reader.hpp"
+#include "link/session_reader.hpp"
 
 #include <array>
 #include <stdexcept>
 
 #include "kapfix/v1/envelope_codec.hpp"
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 namespace kapfix::link {
 namespace {
