@@ -4,36 +4,50 @@
 // recording; SessionReader reads them back. The bytes are the agent's, untouched, so a
 // recording replays through the same decoder as the live link.
 //
-// File format (all integers little-endian):
-//   magic   8 bytes "KFXREC01"
-//   then per message:
-//     u64 receive_time_us   [µs since epoch, the recorder's clock]
-//     u32 topic_bytes,   topic   (e.g. "telemetry")
-//     u32 payload_bytes, payload (the serialized kapfix.v1 message)
+// File format: length-delimited kapfix.v1.SessionRecord messages (proto/kapfix/v1/
+// session.proto; protobuf's delimited format: a varint size, then the record), readable by any
+// protobuf client. The first record is a SessionFormat {name "kapfix-session", version 1},
+// every later one a RecordedMessage {receive time [µs], topic, payload}.
 
 #include <cstdint>
-#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 
+namespace google::protobuf::io {
+class FileOutputStream;
+}  // namespace google::protobuf::io
+
+namespace kapfix::v1 {
+class SessionRecord;
+}  // namespace kapfix::v1
+
 namespace kapfix::link {
 
-inline constexpr std::string_view kSessionMagic = "KFXREC01";
+inline constexpr std::string_view kSessionFormatName = "kapfix-session";
+inline constexpr std::uint32_t kSessionFormatVersion = 1;
 
 class SessionRecorder {
  public:
-  // Creates or truncates `path`; throws std::runtime_error when it cannot be opened.
+  // Creates or truncates `path` and writes the format record; throws std::runtime_error when
+  // it cannot be created.
   explicit SessionRecorder(const std::string& path);
+  ~SessionRecorder();  // flushes what is buffered and closes the file
+  SessionRecorder(const SessionRecorder&) = delete;
+  SessionRecorder& operator=(const SessionRecorder&) = delete;
 
-  // Appends one message; throws std::runtime_error when the write fails (disk full).
+  // Appends one message; throws std::runtime_error when the write fails (disk full). Writes are
+  // buffered: a failure may surface on a later Write or on Flush.
   void Write(std::string_view topic, std::string_view payload, std::int64_t receive_time_us);
   void Flush();
 
   std::uint64_t messages() const { return messages_; }
 
  private:
+  void Append(const kapfix::v1::SessionRecord& record);
+
   std::string path_;
-  std::ofstream out_;
+  std::unique_ptr<google::protobuf::io::FileOutputStream> out_;
   std::uint64_t messages_ = 0;
 };
 

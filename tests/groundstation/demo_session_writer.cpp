@@ -1,7 +1,7 @@
-// Writes a synthetic KFXREC01 session for the station's documentation screenshot when no
-// agent serves the link: a kite's free swing over an aerial photo (opencv-doc's aero3.jpg),
-// an SSP run whose slice graphs and scores are computed from that swing, then fixation on
-// the recommended slice. Everything is made up here — it shows the views, not the method's
+// Writes a synthetic session file (link/session_recorder.hpp) for the station's documentation
+// screenshot when no agent serves the link: a kite's free swing over an aerial photo (opencv-doc's
+// aero3.jpg), an SSP run whose slice graphs and scores are computed from that swing, then fixation
+// on the recommended slice. Everything is made up here — it shows the views, not the method's
 // results; deploy/station-screenshot.sh takes the real picture against an agent.
 //
 // Usage: kapfix_station_demo_session OUT.kfxrec [SCENE.jpg]
