@@ -17,7 +17,9 @@
 #include "agent/server/request_frames.hpp"
 #include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/envelope.hpp"
 #include "link/link_endpoint.hpp"
+#include "link/topic_names.hpp"
 #include "link/whole_message_receive.hpp"
 
 namespace kapfix::agent {
@@ -29,8 +31,8 @@ using kapfix::v1::Reply;
 // malformed, and its extra frames are read and discarded rather than kept in memory.
 constexpr std::size_t kMaxFramesKept = 1 + kRequestFramesKept;
 
-constexpr std::string_view kHeartbeatTopic = "heartbeat";
-constexpr std::string_view kReplyTopic = "reply";
+using kapfix::link::kHeartbeatTopic;
+using kapfix::link::kReplyTopic;
 
 std::string_view View(const zmq::message_t& frame) { return frame.to_string_view(); }
 
@@ -180,8 +182,8 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
                                           const Envelope& envelope) {
   kapfix::v1::Heartbeat heartbeat;
   // A heartbeat is not a command: nothing to refuse with a reply; a bad one is only counted.
-  if (!kapfix::v1::DecodeEnvelope(kHeartbeatTopic, envelope.payload, &heartbeat,
-                                  kapfix::v1::kMaxCommandBytes, nullptr) ||
+  if (!kapfix::link::DecodeEnvelope(kHeartbeatTopic, envelope.payload, &heartbeat,
+                                    kapfix::v1::kMaxCommandBytes, nullptr) ||
       !heartbeat_guard.Accept(View(request.frames[0]), heartbeat.header().sequence(), nullptr)) {
     heartbeats_ignored.fetch_add(1);
     return;

@@ -22,6 +22,7 @@
 #include "kapfix/v1/state.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
 #include "kapfix/v1/video.pb.h"
+#include "link/envelope.hpp"
 #include "link/session_recorder.hpp"
 
 namespace {
@@ -48,7 +49,7 @@ class Writer {
     kapfix::v1::Stamp(message.mutable_header(), "demo-agent", ++sequence_);
     message.mutable_header()->set_capture_time_us(time_us);
     message.mutable_header()->set_send_time_us(time_us);
-    const kapfix::v1::Envelope envelope = kapfix::v1::Encode(message);
+    const kapfix::link::Envelope envelope = kapfix::link::Encode(message);
     recorder_.Write(envelope.topic, envelope.payload, time_us);
   }
   void Flush() { recorder_.Flush(); }

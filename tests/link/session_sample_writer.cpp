@@ -9,6 +9,7 @@
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/log.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/envelope.hpp"
 #include "link/session_recorder.hpp"
 
 int main(int argc, char** argv) {
@@ -23,13 +24,13 @@ int main(int argc, char** argv) {
       kapfix::v1::Telemetry telemetry;
       kapfix::v1::Stamp(telemetry.mutable_header(), "sample-agent", sequence);
       telemetry.set_frame_number(9 + sequence);
-      const kapfix::v1::Envelope envelope = kapfix::v1::Encode(telemetry);
+      const kapfix::link::Envelope envelope = kapfix::link::Encode(telemetry);
       recorder.Write(envelope.topic, envelope.payload, 1000 + sequence);
     }
     kapfix::v1::Log log;
     kapfix::v1::Stamp(log.mutable_header(), "sample-agent", kTelemetryMessages + 1);
     log.set_text("sample");
-    const kapfix::v1::Envelope envelope = kapfix::v1::Encode(log);
+    const kapfix::link::Envelope envelope = kapfix::link::Encode(log);
     recorder.Write(envelope.topic, envelope.payload, 1000 + kTelemetryMessages + 1);
     recorder.Flush();
   } catch (const std::exception& error) {
