@@ -13,18 +13,27 @@
 #include <zmq.hpp>
 
 #include "agent/server/command_intake.hpp"
-#include "agent/server/connection_monitor.hpp"
-#include "agent/server/request_frames.hpp"
-#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/connection_monitor.hpp"
 #include "link/envelope.hpp"
 #include "link/link_endpoint.hpp"
+#include "link/request_frames.hpp"
+#include "link/socket_thread_start.hpp"
 #include "link/topic_names.hpp"
 #include "link/whole_message_receive.hpp"
 
 namespace kapfix::agent {
 namespace {
 
+using kapfix::link::ConnectionMonitor;
+using kapfix::link::ConnectionMonitorOptions;
+using kapfix::link::kRequestFramesKept;
+using kapfix::link::ParseRequestFrames;
+using kapfix::link::RequestFrames;
+using kapfix::link::RequireCurve;
+using kapfix::link::StartSocketThread;
+using kapfix::link::StopSocketThread;
+using kapfix::link::ZapHandler;
 using kapfix::v1::Reply;
 
 // A request has at most routing id, delimiter, topic and message; anything longer is

@@ -17,11 +17,11 @@
 #include <utility>
 #include <zmq.hpp>
 
-#include "agent/server/connection_monitor.hpp"
-#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/connection_monitor.hpp"
 #include "link/link_endpoint.hpp"
+#include "link/socket_thread_start.hpp"
 #include "link/topic_names.hpp"
 #include "link/topic_table.hpp"
 
@@ -29,6 +29,12 @@ namespace kapfix::agent {
 namespace {
 
 using google::protobuf::Message;
+using kapfix::link::ConnectionMonitor;
+using kapfix::link::ConnectionMonitorOptions;
+using kapfix::link::RequireCurve;
+using kapfix::link::StartSocketThread;
+using kapfix::link::StopSocketThread;
+using kapfix::link::ZapHandler;
 using Clock = std::chrono::steady_clock;
 
 using kapfix::link::kHeartbeatTopic;

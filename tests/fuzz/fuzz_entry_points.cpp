@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "agent/server/command_intake.hpp"
-#include "agent/server/request_frames.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/envelope.hpp"
+#include "link/request_frames.hpp"
 #include "link/topic_table.hpp"
 #include "tests/fuzz/executed_command_check.hpp"
 #include "tests/fuzz/invariant.hpp"
@@ -166,11 +166,11 @@ std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size) {
     const bool last = at + 1 + length >= size;
     const std::string_view frame =
         last ? Bytes(data + at, size - at) : Bytes(data + at + 1, length);
-    if (kept.size() < kapfix::agent::kRequestFramesKept) kept.push_back(frame);
+    if (kept.size() < kapfix::link::kRequestFramesKept) kept.push_back(frame);
     ++count;
     at = last ? size : at + 1 + length;
   }
-  const kapfix::agent::RequestFrames frames = kapfix::agent::ParseRequestFrames(kept, count);
+  const kapfix::link::RequestFrames frames = kapfix::link::ParseRequestFrames(kept, count);
   const std::size_t parts = count - (frames.delimiter ? 1U : 0U);
   Require(frames.error.empty() == (parts == 1 || parts == 2),
           "exactly [delimiter,] [topic,] message is accepted");
