@@ -145,7 +145,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
   std::optional<ResumeRecord> resumed;
   if (options_.resume && config_.resume) resumed = LoadResumeRecord(*resume_store_, &config_);
-  std::optional<CurveServerKeys> curve;
+  std::optional<kapfix::link::CurveServerKeys> curve;
   if (!config_.link.curve_secret_key_file.empty()) {
     // Fresh install (the package's postinst makes the agent's keys and an empty list): no
     // station can be authorised yet, so serve this machine only and say how to add one.
@@ -168,8 +168,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
     }
   }
   if (!config_.link.curve_secret_key_file.empty()) {
-    curve = ReadCurveServerKeys(config_.link.curve_secret_key_file,
-                                config_.link.curve_authorized_keys_file, &error);
+    curve = kapfix::link::ReadCurveServerKeys(config_.link.curve_secret_key_file,
+                                              config_.link.curve_authorized_keys_file, &error);
     if (!curve) throw std::runtime_error(error);
     spdlog::info("link: CurveZMQ, {} authorised station key(s)", curve->authorized_stations.size());
   }

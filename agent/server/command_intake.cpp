@@ -3,6 +3,9 @@
 #include <exception>
 #include <utility>
 
+#include "link/envelope.hpp"
+#include "link/topic_names.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -10,7 +13,7 @@ using kapfix::v1::Command;
 using kapfix::v1::ErrorCode;
 using kapfix::v1::Reply;
 
-constexpr std::string_view kCommandTopic = "command";
+using kapfix::link::kCommandTopic;
 
 }  // namespace
 
@@ -50,8 +53,8 @@ Reply CommandIntake::Check(std::string_view sender, std::optional<std::string_vi
   Reply reply;
   std::string error;
   ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
-  if (!kapfix::v1::DecodeEnvelope(topic.value_or(kCommandTopic), payload, &command,
-                                  kapfix::v1::kMaxCommandBytes, &error, &code)) {
+  if (!kapfix::link::DecodeEnvelope(topic.value_or(kCommandTopic), payload, &command,
+                                    kapfix::v1::kMaxCommandBytes, &error, &code)) {
     if (code == kapfix::v1::ERROR_CODE_WRONG_VERSION) {
       // The bytes parse; read them anyway, only so the reply can name the command's sequence
       // and the station can match it to its request.

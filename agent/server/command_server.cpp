@@ -13,24 +13,35 @@
 #include <zmq.hpp>
 
 #include "agent/server/command_intake.hpp"
-#include "agent/server/connection_monitor.hpp"
-#include "agent/server/request_frames.hpp"
-#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/connection_monitor.hpp"
+#include "link/envelope.hpp"
 #include "link/link_endpoint.hpp"
+#include "link/request_frames.hpp"
+#include "link/socket_thread_start.hpp"
+#include "link/topic_names.hpp"
 #include "link/whole_message_receive.hpp"
 
 namespace kapfix::agent {
 namespace {
 
+using kapfix::link::ConnectionMonitor;
+using kapfix::link::ConnectionMonitorOptions;
+using kapfix::link::kRequestFramesKept;
+using kapfix::link::ParseRequestFrames;
+using kapfix::link::RequestFrames;
+using kapfix::link::RequireCurve;
+using kapfix::link::StartSocketThread;
+using kapfix::link::StopSocketThread;
+using kapfix::link::ZapHandler;
 using kapfix::v1::Reply;
 
 // A request has at most routing id, delimiter, topic and message; anything longer is
 // malformed, and its extra frames are read and discarded rather than kept in memory.
 constexpr std::size_t kMaxFramesKept = 1 + kRequestFramesKept;
 
-constexpr std::string_view kHeartbeatTopic = "heartbeat";
-constexpr std::string_view kReplyTopic = "reply";
+using kapfix::link::kHeartbeatTopic;
+using kapfix::link::kReplyTopic;
 
 std::string_view View(const zmq::message_t& frame) { return frame.to_string_view(); }
 
@@ -180,8 +191,8 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
                                           const Envelope& envelope) {
   kapfix::v1::Heartbeat heartbeat;
   // A heartbeat is not a command: nothing to refuse with a reply; a bad one is only counted.
-  if (!kapfix::v1::DecodeEnvelope(kHeartbeatTopic, envelope.payload, &heartbeat,
-                                  kapfix::v1::kMaxCommandBytes, nullptr) ||
+  if (!kapfix::link::DecodeEnvelope(kHeartbeatTopic, envelope.payload, &heartbeat,
+                                    kapfix::v1::kMaxCommandBytes, nullptr) ||
       !heartbeat_guard.Accept(View(request.frames[0]), heartbeat.header().sequence(), nullptr)) {
     heartbeats_ignored.fetch_add(1);
     return;

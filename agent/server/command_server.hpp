@@ -17,9 +17,9 @@
 
 #include "agent/server/agent_control.hpp"
 #include "agent/server/command_validator.hpp"
-#include "agent/server/curve_server_keys.hpp"
 #include "agent/server/replay_window.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/curve_server_keys.hpp"
 
 namespace kapfix::agent {
 
@@ -48,7 +48,7 @@ struct CommandServerOptions {
   // the open-file limit, with room for the agent's own files).
   std::size_t max_connections = 4096;
   // CurveZMQ: encrypt every connection and accept only the listed stations. Unset: plain.
-  std::optional<CurveServerKeys> curve;
+  std::optional<kapfix::link::CurveServerKeys> curve;
 };
 
 class CommandServer {

@@ -17,21 +17,29 @@
 #include <utility>
 #include <zmq.hpp>
 
-#include "agent/server/connection_monitor.hpp"
-#include "agent/server/socket_thread_start.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
+#include "link/connection_monitor.hpp"
 #include "link/link_endpoint.hpp"
+#include "link/socket_thread_start.hpp"
+#include "link/topic_names.hpp"
+#include "link/topic_table.hpp"
 
 namespace kapfix::agent {
 namespace {
 
 using google::protobuf::Message;
+using kapfix::link::ConnectionMonitor;
+using kapfix::link::ConnectionMonitorOptions;
+using kapfix::link::RequireCurve;
+using kapfix::link::StartSocketThread;
+using kapfix::link::StopSocketThread;
+using kapfix::link::ZapHandler;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::string_view kVideoTopic = "video";
-constexpr std::string_view kTelemetryTopic = "telemetry";
-constexpr std::string_view kHeartbeatTopic = "heartbeat";
+using kapfix::link::kHeartbeatTopic;
+using kapfix::link::kTelemetryTopic;
+using kapfix::link::kVideoTopic;
 
 // How long to wait before retrying a message ZeroMQ could not take (a subscriber's queue is at
 // its high-water mark): short, so telemetry catches up as soon as the link drains.
@@ -242,8 +250,8 @@ void StreamPublisher::Stop() {
 }
 
 bool StreamPublisher::Publish(const Message& message) {
-  std::string topic = kapfix::v1::TopicFor(message);
-  if (topic.empty() || topic == "command") {
+  std::string topic = kapfix::link::TopicFor(message);
+  if (topic.empty() || topic == kapfix::link::kCommandTopic) {
     impl_->rejected.fetch_add(1);
     return false;
   }

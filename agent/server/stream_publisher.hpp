@@ -31,8 +31,8 @@
 #include <optional>
 #include <string>
 
-#include "agent/server/curve_server_keys.hpp"
 #include "agent/server/stream_sink.hpp"
+#include "link/curve_server_keys.hpp"
 
 namespace kapfix::agent {
 
@@ -65,7 +65,7 @@ struct StreamPublisherOptions {
   std::size_t max_connections = 4096;
   // CurveZMQ: encrypt every connection and let only the listed stations subscribe. Unset:
   // plain.
-  std::optional<CurveServerKeys> curve;
+  std::optional<kapfix::link::CurveServerKeys> curve;
 };
 
 class StreamPublisher : public StreamSink {

@@ -4,6 +4,9 @@
 #include <string>
 
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/envelope.hpp"
+#include "link/topic_names.hpp"
+#include "link/topic_table.hpp"
 
 namespace kapfix::station {
 namespace {
@@ -20,34 +23,34 @@ AgentClient::~AgentClient() = default;
 
 bool AgentClient::deliverMessage(std::string_view topic, std::string_view payload,
                                  std::int64_t receive_time_us) {
-  std::unique_ptr<google::protobuf::Message> message = kapfix::v1::NewMessageForTopic(topic);
-  if (message == nullptr || !kapfix::v1::DecodeEnvelope(topic, payload, message.get(),
-                                                        kapfix::v1::kMaxMessageBytes, nullptr)) {
+  std::unique_ptr<google::protobuf::Message> message = kapfix::link::NewMessageForTopic(topic);
+  if (message == nullptr || !kapfix::link::DecodeEnvelope(topic, payload, message.get(),
+                                                          kapfix::v1::kMaxMessageBytes, nullptr)) {
     return false;
   }
-  if (topic == "heartbeat") return true;
+  if (topic == kapfix::link::kHeartbeatTopic) return true;
   emit messageReceived(QString::fromUtf8(topic.data(), static_cast<qsizetype>(topic.size())),
                        Bytes(payload), receive_time_us);
   // The casts are safe: DecodeEnvelope checked that `message` is the type of `topic`.
-  if (topic == "telemetry") {
+  if (topic == kapfix::link::kTelemetryTopic) {
     emit telemetryReceived(static_cast<const kapfix::v1::Telemetry&>(*message));
-  } else if (topic == "video") {
+  } else if (topic == kapfix::link::kVideoTopic) {
     emit videoFrameReceived(static_cast<const kapfix::v1::VideoFrame&>(*message));
-  } else if (topic == "slices") {
+  } else if (topic == kapfix::link::kSlicesTopic) {
     emit sliceReportReceived(static_cast<const kapfix::v1::SliceReport&>(*message));
-  } else if (topic == "pss") {
+  } else if (topic == kapfix::link::kPssTopic) {
     emit pssReportReceived(static_cast<const kapfix::v1::PssReport&>(*message));
-  } else if (topic == "calibration") {
+  } else if (topic == kapfix::link::kCalibrationTopic) {
     emit calibrationReceived(static_cast<const kapfix::v1::CalibrationReport&>(*message));
-  } else if (topic == "state") {
+  } else if (topic == kapfix::link::kStateTopic) {
     emit stateReceived(static_cast<const kapfix::v1::AgentState&>(*message));
-  } else if (topic == "photo") {
+  } else if (topic == kapfix::link::kPhotoTopic) {
     emit photoChunkReceived(static_cast<const kapfix::v1::Photo&>(*message));
-  } else if (topic == "log") {
+  } else if (topic == kapfix::link::kLogTopic) {
     emit logReceived(static_cast<const kapfix::v1::Log&>(*message));
-  } else if (topic == "command") {
+  } else if (topic == kapfix::link::kCommandTopic) {
     emit commandSent(static_cast<const kapfix::v1::Command&>(*message));
-  } else if (topic == "reply") {
+  } else if (topic == kapfix::link::kReplyTopic) {
     const auto& reply = static_cast<const kapfix::v1::Reply&>(*message);
     emit replyReceived(reply);
     if (reply.has_state()) emit stateReceived(reply.state());
@@ -60,7 +63,7 @@ void AgentClient::announceCommand(const kapfix::v1::Command& command) {
   // other message; the link stamps the real one.
   kapfix::v1::Command recorded = command;
   kapfix::v1::Stamp(recorded.mutable_header(), recorded.header().agent_id(), 0);
-  const kapfix::v1::Envelope envelope = kapfix::v1::Encode(recorded);
+  const kapfix::link::Envelope envelope = kapfix::link::Encode(recorded);
   emit messageReceived(QString::fromStdString(envelope.topic), Bytes(envelope.payload),
                        kapfix::v1::NowMicros());
   emit commandSent(recorded);
@@ -68,7 +71,7 @@ void AgentClient::announceCommand(const kapfix::v1::Command& command) {
 
 void AgentClient::finishCommand(const CommandOutcome& outcome, const ReplyCallback& done) {
   if (outcome.answered) {
-    const kapfix::v1::Envelope envelope = kapfix::v1::Encode(outcome.reply);
+    const kapfix::link::Envelope envelope = kapfix::link::Encode(outcome.reply);
     emit messageReceived(QString::fromStdString(envelope.topic), Bytes(envelope.payload),
                          kapfix::v1::NowMicros());
     emit replyReceived(outcome.reply);

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/envelope.hpp"
 
 namespace kapfix::station {
 namespace {
@@ -71,7 +72,7 @@ void FakeAgentClient::publish(const google::protobuf::Message& message) {
     kapfix::v1::Stamp(header, kFakeAgentId, ++sequence_);
     header->set_boot_id(boot_id_);
   }
-  const kapfix::v1::Envelope envelope = kapfix::v1::Encode(*stamped);
+  const kapfix::link::Envelope envelope = kapfix::link::Encode(*stamped);
   deliverMessage(envelope.topic, envelope.payload, kapfix::v1::NowMicros());
 }
 

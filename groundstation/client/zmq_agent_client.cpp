@@ -8,7 +8,8 @@
 #include <utility>
 
 #include "kapfix/v1/envelope_codec.hpp"
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
+#include "link/topic_names.hpp"
 
 namespace kapfix::station {
 
@@ -46,7 +47,7 @@ bool ZmqAgentClient::connectToEndpoints(const QString& command_endpoint,
   auto video = std::make_shared<VideoSlot>();
   link->OnRawMessage([this, generation, video](std::string_view topic, std::string_view payload) {
     const std::int64_t now_us = kapfix::v1::NowMicros();
-    if (topic == "video") {
+    if (topic == kapfix::link::kVideoTopic) {
       bool post = false;
       {
         const std::lock_guard lock(video->mutex);
@@ -117,7 +118,7 @@ void ZmqAgentClient::drainVideo(const std::shared_ptr<VideoSlot>& slot) {
     slot->payload.reset();
     receive_time_us = slot->receive_time_us;
   }
-  deliverMessage("video", payload, receive_time_us);
+  deliverMessage(kapfix::link::kVideoTopic, payload, receive_time_us);
 }
 
 void ZmqAgentClient::sendCommand(kapfix::v1::Command command, ReplyCallback done) {

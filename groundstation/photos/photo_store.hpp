@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "kapfix/v1/photo.pb.h"
-#include "tools/ctl/photo_assembler.hpp"
+#include "link/photo_assembler.hpp"
 
 namespace kapfix::station {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "tools/ctl/session_reader.hpp"
+#include "link/session_reader.hpp"
 
 namespace kapfix::station {
 namespace {

@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "groundstation/client/agent_client.hpp"
-#include "tools/ctl/session_reader.hpp"
+#include "link/session_reader.hpp"
 
 namespace kapfix::station {
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "tools/ctl/session_recorder.hpp"
+#include "link/session_recorder.hpp"
 
 namespace kapfix::station {
 

@@ -1,8 +1,8 @@
 #pragma once
 
 // Records what the views are shown — telemetry, video, reports, photos, log lines, and the
-// operator's commands with the agent's replies — in kapfix-ctl's KFXREC01 format
-// (tools/ctl/session_recorder.hpp), bytes as they came, so a replay goes through the same
+// operator's commands with the agent's replies — in the session file format
+// (link/session_recorder.hpp), bytes as they came, so a replay goes through the same
 // decoder as the live link.
 
 #include <QObject>

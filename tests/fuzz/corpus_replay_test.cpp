@@ -15,6 +15,7 @@
 
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/topic_table.hpp"
 #include "tests/fuzz/fuzz_entry_points.hpp"
 
 namespace kapfix::fuzz {
@@ -66,7 +67,7 @@ class StreamCorpusReplayTest : public ::testing::Test {
 };
 
 TEST_F(StreamCorpusReplayTest, HasAValidSeedForEveryTopic) {
-  for (const std::string& topic : kapfix::v1::Topics()) {
+  for (const std::string& topic : kapfix::link::Topics()) {
     EXPECT_TRUE(Contains(corpus_, "valid_" + topic)) << "no seed valid_" << topic;
   }
 }

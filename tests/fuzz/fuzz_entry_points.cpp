@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "agent/server/command_intake.hpp"
-#include "agent/server/request_frames.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/envelope.hpp"
+#include "link/request_frames.hpp"
+#include "link/topic_table.hpp"
 #include "tests/fuzz/executed_command_check.hpp"
 #include "tests/fuzz/invariant.hpp"
 #include "tests/link/fake_agent_control.hpp"
@@ -28,7 +30,7 @@ constexpr const char* kAgentId = "kapfix-agent";
 constexpr std::string_view kStation("\0\x80\x00\x41\xa7", 5);
 
 std::string_view TopicOf(std::uint8_t byte) {
-  const std::vector<std::string>& topics = kapfix::v1::Topics();
+  const std::vector<std::string>& topics = kapfix::link::Topics();
   if (byte < topics.size()) return topics[byte];
   return "unknown";
 }
@@ -46,12 +48,12 @@ const kapfix::v1::Header& HeaderOf(const Message& message) {
 // A station records and replays what it receives (SessionRecorder): the message encodes to
 // bytes that decode to the same message, under the same topic.
 void RequireRoundTrip(std::string_view topic, const Message& message) {
-  const kapfix::v1::Envelope again = kapfix::v1::Encode(message);
+  const kapfix::link::Envelope again = kapfix::link::Encode(message);
   Require(again.topic == topic, "a decoded message encodes under the topic it came on");
-  const std::unique_ptr<Message> copy = kapfix::v1::NewMessageForTopic(topic);
+  const std::unique_ptr<Message> copy = kapfix::link::NewMessageForTopic(topic);
   std::string error;
-  if (!kapfix::v1::DecodeEnvelope(topic, again.payload, copy.get(), kapfix::v1::kMaxMessageBytes,
-                                  &error)) {
+  if (!kapfix::link::DecodeEnvelope(topic, again.payload, copy.get(), kapfix::v1::kMaxMessageBytes,
+                                    &error)) {
     Broken("a decoded message, encoded again, does not decode: " + error);
   }
   Require(copy->SerializeAsString() == again.payload, "a decoded message encodes to itself");
@@ -59,11 +61,11 @@ void RequireRoundTrip(std::string_view topic, const Message& message) {
 
 // Bytes published under one topic are never read as another type.
 void RequireNoOtherTypeReads(std::string_view topic, std::string_view payload) {
-  for (const std::string& other : kapfix::v1::Topics()) {
+  for (const std::string& other : kapfix::link::Topics()) {
     if (other == topic) continue;
-    const std::unique_ptr<Message> message = kapfix::v1::NewMessageForTopic(other);
-    Require(!kapfix::v1::DecodeEnvelope(topic, payload, message.get(), kapfix::v1::kMaxMessageBytes,
-                                        nullptr),
+    const std::unique_ptr<Message> message = kapfix::link::NewMessageForTopic(other);
+    Require(!kapfix::link::DecodeEnvelope(topic, payload, message.get(),
+                                          kapfix::v1::kMaxMessageBytes, nullptr),
             "bytes published under one topic decode as another topic's type");
   }
 }
@@ -79,8 +81,8 @@ void RequireWellFormed(const kapfix::v1::Reply& answer, std::uint64_t command_se
   kapfix::v1::Stamp(sent.mutable_header(), kAgentId, 1);
   kapfix::v1::Reply received;
   std::string error;
-  if (!kapfix::v1::DecodeEnvelope("reply", sent.SerializeAsString(), &received,
-                                  kapfix::v1::kMaxMessageBytes, &error)) {
+  if (!kapfix::link::DecodeEnvelope("reply", sent.SerializeAsString(), &received,
+                                    kapfix::v1::kMaxMessageBytes, &error)) {
     Broken("the station cannot read the agent's reply: " + error);
   }
 }
@@ -100,7 +102,7 @@ void RequireExecutedAsPromised(const kapfix::v1::Command& command, std::uint64_t
 }  // namespace
 
 std::uint8_t TopicByte(std::string_view topic) {
-  const std::vector<std::string>& topics = kapfix::v1::Topics();
+  const std::vector<std::string>& topics = kapfix::link::Topics();
   return static_cast<std::uint8_t>(std::find(topics.begin(), topics.end(), topic) - topics.begin());
 }
 
@@ -108,17 +110,17 @@ bool FuzzStreamMessage(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return false;
   const std::string_view topic = TopicOf(data[0]);
   const std::string_view payload = Bytes(data + 1, size - 1);
-  const std::unique_ptr<Message> message = kapfix::v1::NewMessageForTopic(topic);
+  const std::unique_ptr<Message> message = kapfix::link::NewMessageForTopic(topic);
   if (message == nullptr) {
-    const auto& topics = kapfix::v1::Topics();
+    const auto& topics = kapfix::link::Topics();
     Require(std::find(topics.begin(), topics.end(), topic) == topics.end(),
             "every topic of Topics() has a message type");
     return false;
   }
   std::string error;
   ErrorCode code = kapfix::v1::ERROR_CODE_UNSPECIFIED;
-  if (!kapfix::v1::DecodeEnvelope(topic, payload, message.get(), kapfix::v1::kMaxMessageBytes,
-                                  &error, &code)) {
+  if (!kapfix::link::DecodeEnvelope(topic, payload, message.get(), kapfix::v1::kMaxMessageBytes,
+                                    &error, &code)) {
     Require(message->ByteSizeLong() == 0, "a refused message is left empty");
     Require(!error.empty() && code != kapfix::v1::ERROR_CODE_UNSPECIFIED,
             "a refused message comes with a reason and an error code");
@@ -164,11 +166,11 @@ std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size) {
     const bool last = at + 1 + length >= size;
     const std::string_view frame =
         last ? Bytes(data + at, size - at) : Bytes(data + at + 1, length);
-    if (kept.size() < kapfix::agent::kRequestFramesKept) kept.push_back(frame);
+    if (kept.size() < kapfix::link::kRequestFramesKept) kept.push_back(frame);
     ++count;
     at = last ? size : at + 1 + length;
   }
-  const kapfix::agent::RequestFrames frames = kapfix::agent::ParseRequestFrames(kept, count);
+  const kapfix::link::RequestFrames frames = kapfix::link::ParseRequestFrames(kept, count);
   const std::size_t parts = count - (frames.delimiter ? 1U : 0U);
   Require(frames.error.empty() == (parts == 1 || parts == 2),
           "exactly [delimiter,] [topic,] message is accepted");

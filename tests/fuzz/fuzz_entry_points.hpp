@@ -12,7 +12,7 @@
 
 namespace kapfix::fuzz {
 
-// The first byte of a stream input that selects `topic`: its index in kapfix::v1::Topics().
+// The first byte of a stream input that selects `topic`: its index in kapfix::link::Topics().
 // A byte past the last topic (what an unknown `topic` gets) stands for an unknown topic.
 std::uint8_t TopicByte(std::string_view topic);
 

@@ -23,6 +23,7 @@
 #include "kapfix/v1/state.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
 #include "kapfix/v1/video.pb.h"
+#include "link/envelope.hpp"
 #include "tests/fuzz/fuzz_entry_points.hpp"
 
 namespace {
@@ -218,7 +219,7 @@ Command SampleCommand(std::uint64_t sequence) {
 
 void WriteStreamSeeds(CorpusFolder& folder) {
   const auto write = [&](const google::protobuf::Message& message) {
-    const kapfix::v1::Envelope envelope = kapfix::v1::Encode(message);
+    const kapfix::link::Envelope envelope = kapfix::link::Encode(message);
     folder.Write("valid_" + envelope.topic, StreamInput(envelope.topic, envelope.payload));
   };
   write(SampleTelemetry());

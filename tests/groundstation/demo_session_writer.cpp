@@ -1,7 +1,7 @@
-// Writes a synthetic KFXREC01 session for the station's documentation screenshot when no
-// agent serves the link: a kite's free swing over an aerial photo (opencv-doc's aero3.jpg),
-// an SSP run whose slice graphs and scores are computed from that swing, then fixation on
-// the recommended slice. Everything is made up here — it shows the views, not the method's
+// Writes a synthetic session file (link/session_recorder.hpp) for the station's documentation
+// screenshot when no agent serves the link: a kite's free swing over an aerial photo (opencv-doc's
+// aero3.jpg), an SSP run whose slice graphs and scores are computed from that swing, then fixation
+// on the recommended slice. Everything is made up here — it shows the views, not the method's
 // results; deploy/station-screenshot.sh takes the real picture against an agent.
 //
 // Usage: kapfix_station_demo_session OUT.kfxrec [SCENE.jpg]
@@ -22,7 +22,8 @@
 #include "kapfix/v1/state.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
 #include "kapfix/v1/video.pb.h"
-#include "tools/ctl/session_recorder.hpp"
+#include "link/envelope.hpp"
+#include "link/session_recorder.hpp"
 
 namespace {
 
@@ -48,7 +49,7 @@ class Writer {
     kapfix::v1::Stamp(message.mutable_header(), "demo-agent", ++sequence_);
     message.mutable_header()->set_capture_time_us(time_us);
     message.mutable_header()->set_send_time_us(time_us);
-    const kapfix::v1::Envelope envelope = kapfix::v1::Encode(message);
+    const kapfix::link::Envelope envelope = kapfix::link::Encode(message);
     recorder_.Write(envelope.topic, envelope.payload, time_us);
   }
   void Flush() { recorder_.Flush(); }

@@ -1,4 +1,4 @@
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 
 #include <gtest/gtest.h>
 

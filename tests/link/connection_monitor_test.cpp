@@ -1,6 +1,6 @@
 // ConnectionMonitor's connection budget (issue 15, item 3): a flood of silent connections
 // must not keep a station out.
-#include "agent/server/connection_monitor.hpp"
+#include "link/connection_monitor.hpp"
 
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -15,7 +15,7 @@
 
 #include "tests/link/link_test_support.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 // A TCP connection to 127.0.0.1:port, closed with the object.
@@ -103,4 +103,4 @@ TEST(ConnectionMonitorTest, ConnectionOverTheBudgetShutsDownASilentOneNotAStatio
 }
 
 }  // namespace
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

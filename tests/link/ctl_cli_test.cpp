@@ -19,8 +19,10 @@
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/photo_sidecar.hpp"
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/envelope.hpp"
+#include "link/session_reader.hpp"
+#include "link/topic_table.hpp"
 #include "tests/link/link_test_support.hpp"
-#include "tools/ctl/session_reader.hpp"
 
 namespace kapfix::testing {
 namespace {
@@ -264,11 +266,11 @@ TEST_F(CtlTest, RecordWritesEveryReceivedMessageLengthPrefixed) {
   kapfix::link::SessionReader reader(file.string());
   int messages = 0;
   while (const auto message = reader.Next()) {
-    auto decoded = kapfix::v1::NewMessageForTopic(message->topic);
+    auto decoded = kapfix::link::NewMessageForTopic(message->topic);
     ASSERT_NE(decoded, nullptr) << message->topic;
     std::string error;
-    EXPECT_TRUE(kapfix::v1::DecodeEnvelope(message->topic, message->payload, decoded.get(),
-                                           kapfix::v1::kMaxMessageBytes, &error))
+    EXPECT_TRUE(kapfix::link::DecodeEnvelope(message->topic, message->payload, decoded.get(),
+                                             kapfix::v1::kMaxMessageBytes, &error))
         << error;
     ++messages;
   }

@@ -17,18 +17,18 @@
 #include <thread>
 #include <vector>
 
+#include "link/agent_link_client.hpp"
 #include "link/curve_key_pair.hpp"
 #include "tests/link/link_test_support.hpp"
-#include "tools/ctl/agent_link_client.hpp"
 
 namespace kapfix::testing {
 namespace {
 
-using kapfix::agent::CurveServerKeys;
 using kapfix::link::AgentLinkClient;
 using kapfix::link::AgentLinkClientOptions;
 using kapfix::link::CurveClientKeys;
 using kapfix::link::CurveKeyPair;
+using kapfix::link::CurveServerKeys;
 using kapfix::link::GenerateCurveKeyPair;
 using kapfix::v1::Command;
 using ::testing::HasSubstr;

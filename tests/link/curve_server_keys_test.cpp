@@ -1,6 +1,6 @@
 // ReadCurveServerKeys (issue 15, item 13): an authorised-keys file that others can write is
 // refused, since whoever writes it can authorise a station.
-#include "agent/server/curve_server_keys.hpp"
+#include "link/curve_server_keys.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include "link/curve_key_pair.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 class CurveServerKeysTest : public ::testing::Test {
@@ -52,4 +52,4 @@ TEST_F(CurveServerKeysTest, AuthorisedKeysFileWritableByTheGroupIsRefused) {
 }
 
 }  // namespace
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

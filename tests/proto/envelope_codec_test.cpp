@@ -8,7 +8,6 @@
 #include "kapfix/v1/log.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
 #include "kapfix/v1/types.pb.h"
-#include "kapfix/v1/video.pb.h"
 
 namespace kapfix::v1 {
 namespace {
@@ -33,50 +32,6 @@ std::string LogBytes() {
   log.set_level(LOG_LEVEL_WARN);
   log.set_text(std::string(100, 'w'));
   return log.SerializeAsString();
-}
-
-TEST(TopicTest, TopicForNamesEachStreamType) {
-  EXPECT_EQ(TopicFor(Telemetry()), "telemetry");
-  EXPECT_EQ(TopicFor(VideoFrame()), "video");
-  EXPECT_EQ(TopicFor(Log()), "log");
-  EXPECT_EQ(TopicFor(Command()), "command");
-}
-
-TEST(TopicTest, TopicForIsEmptyForTypesThatDoNotTravelAlone) {
-  EXPECT_EQ(TopicFor(Header()), "");
-  EXPECT_EQ(TopicFor(Rect()), "");
-}
-
-TEST(TopicTest, NoTopicIsAPrefixOfAnother) {
-  // ZeroMQ SUB sockets filter by prefix: subscribing to one topic must not select another.
-  for (const std::string& a : Topics()) {
-    for (const std::string& b : Topics()) {
-      if (a != b) {
-        EXPECT_FALSE(b.starts_with(a)) << a << " is a prefix of " << b;
-      }
-    }
-  }
-}
-
-TEST(TopicTest, NewMessageForTopicMakesTheTypeThatTravelsUnderIt) {
-  ASSERT_EQ(Topics().size(), 11U);
-  for (const std::string& topic : Topics()) {
-    const auto message = NewMessageForTopic(topic);
-    ASSERT_NE(message, nullptr) << topic;
-    EXPECT_EQ(TopicFor(*message), topic);
-  }
-}
-
-TEST(TopicTest, NewMessageForTopicRefusesAnUnknownTopic) {
-  EXPECT_EQ(NewMessageForTopic("telemetryx"), nullptr);
-  EXPECT_EQ(NewMessageForTopic(""), nullptr);
-}
-
-TEST(EncodeTest, EnvelopeCarriesTopicAndSerializedMessage) {
-  const Telemetry telemetry = StampedTelemetry();
-  const Envelope envelope = Encode(telemetry);
-  EXPECT_EQ(envelope.topic, "telemetry");
-  EXPECT_EQ(envelope.payload, telemetry.SerializeAsString());
 }
 
 TEST(DecodeTest, AcceptsAStampedMessage) {
@@ -192,25 +147,6 @@ TEST(DecodeTest, KeepsFieldsAddedByANewerPeer) {
   ASSERT_TRUE(Decode(bytes, &received, kMaxMessageBytes, &error)) << error;
   EXPECT_EQ(received.frame_number(), 1234U);
   EXPECT_EQ(received.SerializeAsString(), bytes);
-}
-
-TEST(DecodeEnvelopeTest, AcceptsBytesUnderTheirOwnTopic) {
-  const Envelope envelope = Encode(StampedTelemetry());
-  Telemetry received;
-  std::string error;
-  EXPECT_TRUE(DecodeEnvelope(envelope.topic, envelope.payload, &received, kMaxMessageBytes, &error))
-      << error;
-}
-
-TEST(DecodeEnvelopeTest, RejectsBytesUnderAnotherTopic) {
-  const Envelope envelope = Encode(StampedTelemetry());
-  VideoFrame received;
-  std::string error;
-  ErrorCode code = ERROR_CODE_UNSPECIFIED;
-  EXPECT_FALSE(
-      DecodeEnvelope(envelope.topic, envelope.payload, &received, kMaxMessageBytes, &error, &code));
-  EXPECT_EQ(code, ERROR_CODE_MALFORMED);
-  EXPECT_THAT(error, HasSubstr("topic 'telemetry' does not carry kapfix.v1.VideoFrame"));
 }
 
 TEST(StampTest, SetsProtocolVersionAgentIdAndSequence) {

@@ -12,6 +12,8 @@
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/envelope.hpp"
+#include "link/topic_table.hpp"
 
 namespace kapfix::v1 {
 namespace {
@@ -23,6 +25,11 @@ using google::protobuf::FileDescriptor;
 using google::protobuf::Message;
 using google::protobuf::Reflection;
 using google::protobuf::util::MessageDifferencer;
+using kapfix::link::DecodeEnvelope;
+using kapfix::link::Encode;
+using kapfix::link::Envelope;
+using kapfix::link::NewMessageForTopic;
+using kapfix::link::Topics;
 
 void FillEveryField(Message* message);
 

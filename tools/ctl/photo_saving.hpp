@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "tools/ctl/photo_assembler.hpp"
+#include "link/photo_assembler.hpp"
 
 namespace kapfix::link {
 

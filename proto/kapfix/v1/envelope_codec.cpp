@@ -11,55 +11,14 @@
 #include <cstdio>
 #include <utility>
 
-#include "kapfix/v1/calibration.pb.h"
-#include "kapfix/v1/heartbeat.pb.h"
-#include "kapfix/v1/log.pb.h"
-#include "kapfix/v1/photo.pb.h"
-#include "kapfix/v1/slices.pb.h"
-#include "kapfix/v1/state.pb.h"
-#include "kapfix/v1/telemetry.pb.h"
-#include "kapfix/v1/video.pb.h"
-
 namespace kapfix::v1 {
 namespace {
 
-using google::protobuf::Descriptor;
 using google::protobuf::FieldDescriptor;
 using google::protobuf::Message;
 
 // Every message that travels on its own carries `Header header = 1;`.
 constexpr int kHeaderField = 1;
-
-struct TopicEntry {
-  const char* topic;
-  const Message* prototype;
-};
-
-// The one table of which type travels under which topic.
-const std::array<TopicEntry, 11>& TopicTable() {
-  static const std::array<TopicEntry, 11> table = {{
-      {"telemetry", &Telemetry::default_instance()},
-      {"video", &VideoFrame::default_instance()},
-      {"slices", &SliceReport::default_instance()},
-      {"pss", &PssReport::default_instance()},
-      {"calibration", &CalibrationReport::default_instance()},
-      {"photo", &Photo::default_instance()},
-      {"log", &Log::default_instance()},
-      {"heartbeat", &Heartbeat::default_instance()},
-      {"command", &Command::default_instance()},
-      {"reply", &Reply::default_instance()},
-      {"state", &AgentState::default_instance()},
-  }};
-  return table;
-}
-
-const TopicEntry* FindByType(const Descriptor& type) {
-  for (const TopicEntry& entry : TopicTable()) {
-    // By name, so that a DynamicMessage of the same type (another descriptor pool) matches.
-    if (entry.prototype->GetDescriptor()->full_name() == type.full_name()) return &entry;
-  }
-  return nullptr;
-}
 
 bool Fail(ErrorCode value, std::string reason, std::string* error, ErrorCode* code) {
   if (error != nullptr) *error = std::move(reason);
@@ -67,7 +26,8 @@ bool Fail(ErrorCode value, std::string reason, std::string* error, ErrorCode* co
   return false;
 }
 
-// A sender key for an error message: routing ids are binary, keys may be long.
+}  // namespace
+
 std::string Printable(std::string_view key) {
   constexpr std::size_t kMaxShown = 48;
   std::string out;
@@ -83,33 +43,6 @@ std::string Printable(std::string_view key) {
   }
   if (key.size() > kMaxShown) out += "...";
   return out;
-}
-
-}  // namespace
-
-std::string TopicFor(const Message& message) {
-  const TopicEntry* entry = FindByType(*message.GetDescriptor());
-  return entry == nullptr ? std::string() : std::string(entry->topic);
-}
-
-const std::vector<std::string>& Topics() {
-  static const std::vector<std::string> topics = [] {
-    std::vector<std::string> names;
-    for (const TopicEntry& entry : TopicTable()) names.emplace_back(entry.topic);
-    return names;
-  }();
-  return topics;
-}
-
-std::unique_ptr<Message> NewMessageForTopic(std::string_view topic) {
-  for (const TopicEntry& entry : TopicTable()) {
-    if (topic == entry.topic) return std::unique_ptr<Message>(entry.prototype->New());
-  }
-  return nullptr;
-}
-
-Envelope Encode(const Message& message) {
-  return Envelope{TopicFor(message), message.SerializeAsString()};
 }
 
 bool Decode(std::string_view bytes, Message* out, std::size_t max_bytes, std::string* error,
@@ -156,22 +89,6 @@ bool Decode(std::string_view bytes, Message* out, std::size_t max_bytes, std::st
                 error, code);
   }
   return true;
-}
-
-bool DecodeEnvelope(std::string_view topic, std::string_view bytes, Message* out,
-                    std::size_t max_bytes, std::string* error, ErrorCode* code) {
-  if (out == nullptr) {
-    return Fail(ERROR_CODE_INTERNAL, "Decode was given no message to decode into", error, code);
-  }
-  const std::string expected = TopicFor(*out);
-  if (topic != expected) {
-    out->Clear();
-    return Fail(ERROR_CODE_MALFORMED,
-                "topic '" + Printable(topic) + "' does not carry " +
-                    out->GetDescriptor()->full_name() + " (its topic is '" + expected + "')",
-                error, code);
-  }
-  return Decode(bytes, out, max_bytes, error, code);
 }
 
 namespace {

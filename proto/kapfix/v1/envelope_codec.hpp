@@ -1,8 +1,9 @@
 #pragma once
 
-// Framing of kapfix.v1 messages on the link, independent of ZeroMQ: a message travels as a
-// topic string (first frame; ZeroMQ SUB filters on it) and its serialized bytes (second frame).
-// Decoding checks size, well-formedness and protocol version before anything reads a field.
+// Decoding and stamping of kapfix.v1 messages, independent of ZeroMQ: decoding checks size,
+// well-formedness and protocol version before anything reads a field. Topics, and which type
+// travels under which, are the link's (link/topic_names.hpp, link/topic_table.hpp,
+// link/envelope.hpp).
 
 #include <google/protobuf/message.h>
 
@@ -28,27 +29,6 @@ inline constexpr std::size_t kMaxMessageBytes = std::size_t{4} << 20U;   // [byt
 inline constexpr std::size_t kMaxCommandBytes = std::size_t{64} << 10U;  // [bytes]
 inline constexpr std::size_t kPhotoChunkBytes = std::size_t{1} << 20U;   // [bytes]
 
-// One message ready for the wire.
-struct Envelope {
-  std::string topic;    // TopicFor(message)
-  std::string payload;  // serialized message
-};
-
-// The topic a message type travels under: "telemetry", "video", "slices", "pss",
-// "calibration", "photo", "log", "heartbeat", "command", "reply" or "state". No topic is a
-// prefix of another, so ZeroMQ's prefix subscription selects exactly one. Empty for a type
-// that does not travel on its own (Header, Rect, settings…).
-std::string TopicFor(const google::protobuf::Message& message);
-
-// Every topic, in the order above.
-const std::vector<std::string>& Topics();
-
-// A new, empty message of the type a topic carries; nullptr for an unknown topic.
-std::unique_ptr<google::protobuf::Message> NewMessageForTopic(std::string_view topic);
-
-// Topic and serialized bytes of a message (stamp its header first).
-Envelope Encode(const google::protobuf::Message& message);
-
 // Parses `bytes` into `out` (cleared first) and checks it is fit to use: at most max_bytes
 // long, well-formed, carrying a Header at field 1 whose protocol_version is kProtocolVersion.
 // On failure returns false, leaves `out` cleared, and sets `error` to a sentence naming the
@@ -56,10 +36,9 @@ Envelope Encode(const google::protobuf::Message& message);
 bool Decode(std::string_view bytes, google::protobuf::Message* out, std::size_t max_bytes,
             std::string* error, ErrorCode* code = nullptr);
 
-// Decode() that also checks the topic is the one `out`'s type travels under, so bytes
-// published under one topic are never read as another type.
-bool DecodeEnvelope(std::string_view topic, std::string_view bytes, google::protobuf::Message* out,
-                    std::size_t max_bytes, std::string* error, ErrorCode* code = nullptr);
+// `bytes` as text for an error message: printable ASCII kept, anything else as \xNN, at most
+// 48 characters (routing ids are binary, keys may be long).
+std::string Printable(std::string_view bytes);
 
 // libprotobuf logs every invalid UTF-8 string it parses to stderr, unthrottled, so a peer
 // could flood the log with them; Decode() already refuses such a message as malformed with a

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "kapfix/v1/command.pb.h"
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 #include "tools/ctl/commands/command.hpp"
 
 namespace kapfix::ctl {

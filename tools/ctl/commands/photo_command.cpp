@@ -4,12 +4,13 @@
 #include <string>
 
 #include "kapfix/v1/photo.pb.h"
+#include "link/photo_assembler.hpp"
+#include "link/topic_names.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
 #include "tools/ctl/commands/inbox.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
-#include "tools/ctl/photo_assembler.hpp"
 #include "tools/ctl/photo_saving.hpp"
 
 namespace kapfix::ctl {
@@ -33,11 +34,12 @@ int RunPhoto(const LinkArguments& link, const PhotoArguments& arguments) {
   kapfix::link::PhotoAssembler assembler;  // used on the I/O thread only
   Inbox<kapfix::link::AssembledPhoto> photos;
   auto client = MakeClient(link);
-  client->OnMessage("photo", [&](const google::protobuf::Message& message) {
-    if (auto photo = assembler.Add(static_cast<const kapfix::v1::Photo&>(message))) {
-      photos.Put(*photo);
-    }
-  });
+  client->OnMessage(
+      std::string(kapfix::link::kPhotoTopic), [&](const google::protobuf::Message& message) {
+        if (auto photo = assembler.Add(static_cast<const kapfix::v1::Photo&>(message))) {
+          photos.Put(*photo);
+        }
+      });
   client->Start();
   if (!StreamsReady(*client, link)) return LinkDown(*client, link);
   photos.Arm();

@@ -8,11 +8,11 @@
 #include <thread>
 
 #include "kapfix/v1/envelope_codec.hpp"
+#include "link/session_recorder.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
-#include "tools/ctl/session_recorder.hpp"
 
 namespace kapfix::ctl {
 namespace {
@@ -82,9 +82,10 @@ void AddRecordCommand(CLI::App& app, const LinkArguments& link, CommandRun* run)
   auto* record =
       app.add_subcommand("record", "write every stream message to FILE, length-prefixed");
   record->footer(
-      "File: the 8 bytes \"KFXREC01\", then per message (little-endian): u64 receive time "
-      "[µs since epoch], u32 topic length, topic, u32 payload length, payload (the serialized "
-      "kapfix.v1 message).");
+      "File: length-delimited kapfix.v1.SessionRecord messages (proto/kapfix/v1/session.proto; "
+      "a varint size, then the record), readable by any protobuf client: first the format "
+      "(\"kapfix-session\", version 1), then per message its receive time [µs since epoch], "
+      "topic and payload (the serialized kapfix.v1 message).");
   record->add_option("FILE", arguments->file, "output file")->required();
   record->add_option("--count", arguments->count, "stop after N messages")
       ->check(CLI::NonNegativeNumber);

@@ -14,13 +14,14 @@
 #include "kapfix/v1/photo.pb.h"
 #include "kapfix/v1/slices.pb.h"
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/photo_assembler.hpp"
+#include "link/topic_names.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
 #include "tools/ctl/commands/inbox.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
 #include "tools/ctl/message_text.hpp"
-#include "tools/ctl/photo_assembler.hpp"
 #include "tools/ctl/photo_saving.hpp"
 
 namespace kapfix::ctl {
@@ -90,21 +91,24 @@ int RunResync(const LinkArguments& link, const ResyncArguments& arguments) {
   ResyncInboxes inboxes;
   auto client = MakeClient(link);
   if (!save_folder.empty()) {
-    client->OnMessage("photo", [&](const google::protobuf::Message& message) {
-      if (auto photo = inboxes.assembler.Add(static_cast<const kapfix::v1::Photo&>(message))) {
-        inboxes.photos.Put(*photo);
-      }
-    });
+    client->OnMessage(
+        std::string(kapfix::link::kPhotoTopic), [&](const google::protobuf::Message& message) {
+          if (auto photo = inboxes.assembler.Add(static_cast<const kapfix::v1::Photo&>(message))) {
+            inboxes.photos.Put(*photo);
+          }
+        });
   }
-  client->OnMessage("slices", [&](const google::protobuf::Message& message) {
-    inboxes.reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
-  });
+  client->OnMessage(std::string(kapfix::link::kSlicesTopic),
+                    [&](const google::protobuf::Message& message) {
+                      inboxes.reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
+                    });
   // Telemetry flows with every frame: subscribed to it, StreamsReady returns within a frame
   // instead of waiting up to a second for the agent's heartbeat. Its latest line is printed.
-  client->OnMessage("telemetry", [&](const google::protobuf::Message& message) {
-    const std::lock_guard lock(inboxes.telemetry_mutex);
-    inboxes.latest_telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
-  });
+  client->OnMessage(std::string(kapfix::link::kTelemetryTopic),
+                    [&](const google::protobuf::Message& message) {
+                      const std::lock_guard lock(inboxes.telemetry_mutex);
+                      inboxes.latest_telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
+                    });
   client->Start();
   if (!StreamsReady(*client, link)) return LinkDown(*client, link);
   if (!save_folder.empty()) inboxes.photos.Arm();

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "kapfix/v1/slices.pb.h"
+#include "link/topic_names.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
@@ -25,9 +26,10 @@ int RunSsp(const LinkArguments& link, const SspArguments& arguments) {
 
   Inbox<kapfix::v1::SliceReport> reports;  // before the client, whose handler fills it
   auto client = MakeClient(link);
-  client->OnMessage("slices", [&](const google::protobuf::Message& message) {
-    reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
-  });
+  client->OnMessage(std::string(kapfix::link::kSlicesTopic),
+                    [&](const google::protobuf::Message& message) {
+                      reports.Put(static_cast<const kapfix::v1::SliceReport&>(message));
+                    });
   client->Start();
   if (!StreamsReady(*client, link)) return LinkDown(*client, link);
   reports.Arm();

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "kapfix/v1/telemetry.pb.h"
+#include "link/topic_names.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
@@ -28,14 +29,15 @@ int RunWatch(const LinkArguments& link, const WatchOptions& watch) {
   std::optional<std::uint64_t> first_dropped;
   std::uint64_t last_dropped = 0;
   auto client = MakeClient(link);
-  client->OnMessage("telemetry", [&](const google::protobuf::Message& message) {
-    if (watch.count > 0 && received.load() >= watch.count) return;
-    const auto& telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
-    if (!first_dropped) first_dropped = telemetry.telemetry_dropped();
-    last_dropped = telemetry.telemetry_dropped();
-    if (!watch.summary) PrintLine(TelemetryText(telemetry));
-    received.fetch_add(1);
-  });
+  client->OnMessage(std::string(kapfix::link::kTelemetryTopic),
+                    [&](const google::protobuf::Message& message) {
+                      if (watch.count > 0 && received.load() >= watch.count) return;
+                      const auto& telemetry = static_cast<const kapfix::v1::Telemetry&>(message);
+                      if (!first_dropped) first_dropped = telemetry.telemetry_dropped();
+                      last_dropped = telemetry.telemetry_dropped();
+                      if (!watch.summary) PrintLine(TelemetryText(telemetry));
+                      received.fetch_add(1);
+                    });
   client->Start();
   const auto start = Clock::now();
   const auto duration = std::chrono::duration<double>(watch.duration_s);
@@ -48,7 +50,7 @@ int RunWatch(const LinkArguments& link, const WatchOptions& watch) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  const std::uint64_t gaps = client->SequenceGaps("telemetry");
+  const std::uint64_t gaps = client->SequenceGaps(kapfix::link::kTelemetryTopic);
   client->Stop();  // the handler's variables are ours from here on
   if (watch.summary) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -75,7 +75,7 @@ class AgentLinkClient {
   AgentLinkClient& operator=(const AgentLinkClient&) = delete;
 
   // Before Start() only (subscriptions are set when the SUB socket connects). `topic` is one
-  // of kapfix::v1::Topics(); the handler gets the decoded message of that topic's type.
+  // of kapfix::link::Topics(); the handler gets the decoded message of that topic's type.
   void OnMessage(const std::string& topic, MessageHandler handler);
   // Every stream message as received, before decoding (subscribes to every topic).
   void OnRawMessage(RawHandler handler);

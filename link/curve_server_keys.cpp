@@ -1,16 +1,16 @@
-#include "agent/server/curve_server_keys.hpp"
+#include "link/curve_server_keys.hpp"
 
 #include <sys/stat.h>
 
 #include <cstdio>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 std::optional<CurveServerKeys> ReadCurveServerKeys(const std::string& secret_key_file,
                                                    const std::string& authorized_keys_file,
                                                    std::string* error) {
   std::string why;
-  const auto pair = kapfix::link::ReadSecretKeyFile(secret_key_file, &why);
+  const auto pair = ReadSecretKeyFile(secret_key_file, &why);
   if (!pair) {
     if (error) *error = "link.curve_secret_key_file: " + why;
     return std::nullopt;
@@ -29,7 +29,7 @@ std::optional<CurveServerKeys> ReadCurveServerKeys(const std::string& secret_key
     }
     return std::nullopt;
   }
-  auto stations = kapfix::link::ReadPublicKeyLines(authorized_keys_file, &why);
+  auto stations = ReadPublicKeyLines(authorized_keys_file, &why);
   if (!stations) {
     if (error) *error = "link.curve_authorized_keys_file: " + why;
     return std::nullopt;
@@ -45,4 +45,4 @@ std::optional<CurveServerKeys> ReadCurveServerKeys(const std::string& secret_key
   return CurveServerKeys{pair->secret_key, std::move(*stations)};
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,6 +1,6 @@
 #pragma once
 
-// Internal to kapfix_agent_server (includes ZeroMQ): the start and stop sequences shared by
+// Server side of the link (includes ZeroMQ): the start and stop sequences shared by
 // the command server and the stream publisher, each of which owns its socket on its own
 // thread, and, with CurveZMQ keys, a ZAP handler on another in the same context.
 
@@ -10,9 +10,9 @@
 #include <thread>
 #include <zmq.hpp>
 
-#include "agent/server/zap_handler.hpp"
+#include "link/zap_handler.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 // Shuts the context down, which wakes every blocking call on its sockets with ETERM, joins the
 // threads and closes the context. Returns promptly; idempotent.
@@ -55,4 +55,4 @@ std::string StartSocketThread(Impl* impl, const char* what) {
   }
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -10,13 +10,13 @@
 
 #include "link/curve_key_file.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 struct CurveServerKeys {
   std::string secret_key;  // the agent's, Z85 (its public key is what stations are given)
   // Every station allowed to connect; a connection with any other key is refused in the
   // handshake, before a single message of it reaches the server.
-  std::vector<kapfix::link::PublicKeyEntry> authorized_stations;
+  std::vector<PublicKeyEntry> authorized_stations;
 };
 
 // The agent's secret key file and its authorised-keys file (link.curve_secret_key_file,
@@ -26,4 +26,4 @@ std::optional<CurveServerKeys> ReadCurveServerKeys(const std::string& secret_key
                                                    const std::string& authorized_keys_file,
                                                    std::string* error);
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,4 +1,4 @@
-#include "agent/server/zap_handler.hpp"
+#include "link/zap_handler.hpp"
 
 #include <spdlog/spdlog.h>
 #include <zmq.h>
@@ -13,7 +13,7 @@
 
 #include "link/whole_message_receive.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 constexpr const char* kZapEndpoint = "inproc://zeromq.zap.01";
@@ -167,4 +167,4 @@ void ZapHandler::Serve(zmq::socket_t& socket) {
   }
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

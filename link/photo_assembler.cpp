@@ -1,4 +1,4 @@
-#include "tools/ctl/photo_assembler.hpp"
+#include "link/photo_assembler.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

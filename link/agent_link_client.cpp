@@ -1,4 +1,4 @@
-#include "tools/ctl/agent_link_client.hpp"
+#include "link/agent_link_client.hpp"
 
 #include <algorithm>
 #include <array>
@@ -20,8 +20,11 @@
 
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
-#include "tools/ctl/handshake_monitor.hpp"
-#include "tools/ctl/wake_signal.hpp"
+#include "link/envelope.hpp"
+#include "link/handshake_monitor.hpp"
+#include "link/topic_names.hpp"
+#include "link/topic_table.hpp"
+#include "link/wake_signal.hpp"
 
 namespace kapfix::link {
 namespace {
@@ -29,10 +32,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using kapfix::v1::Command;
 using kapfix::v1::Reply;
-
-constexpr std::string_view kCommandTopic = "command";
-constexpr std::string_view kReplyTopic = "reply";
-constexpr std::string_view kHeartbeatTopic = "heartbeat";
 
 // At most this many messages per socket per loop turn, so that a flood of video cannot
 // starve requests, timers and the other socket.
@@ -242,8 +241,8 @@ void AgentLinkClient::Impl::ReceiveReplies(zmq::socket_t& dealer) {
     const std::string_view payload = frames[next + 1].to_string_view();
     if (topic == kReplyTopic) {
       Reply reply;
-      if (!kapfix::v1::DecodeEnvelope(topic, payload, &reply, kapfix::v1::kMaxMessageBytes,
-                                      nullptr)) {
+      if (!kapfix::link::DecodeEnvelope(topic, payload, &reply, kapfix::v1::kMaxMessageBytes,
+                                        nullptr)) {
         continue;
       }
       Heard(reply.header().agent_id());
@@ -254,8 +253,8 @@ void AgentLinkClient::Impl::ReceiveReplies(zmq::socket_t& dealer) {
       done(std::move(reply));
     } else if (topic == kHeartbeatTopic) {
       kapfix::v1::Heartbeat echo;
-      if (!kapfix::v1::DecodeEnvelope(topic, payload, &echo, kapfix::v1::kMaxMessageBytes,
-                                      nullptr)) {
+      if (!kapfix::link::DecodeEnvelope(topic, payload, &echo, kapfix::v1::kMaxMessageBytes,
+                                        nullptr)) {
         continue;
       }
       Heard(echo.header().agent_id());
@@ -285,10 +284,10 @@ void AgentLinkClient::Impl::ReceiveStreams(zmq::socket_t& sub) {
 
 void AgentLinkClient::Impl::HandleStream(std::string_view topic, std::string_view payload) {
   if (raw_handler) raw_handler(topic, payload);
-  std::unique_ptr<google::protobuf::Message> message = kapfix::v1::NewMessageForTopic(topic);
+  std::unique_ptr<google::protobuf::Message> message = kapfix::link::NewMessageForTopic(topic);
   const kapfix::v1::Header* header = nullptr;
-  if (message != nullptr && kapfix::v1::DecodeEnvelope(topic, payload, message.get(),
-                                                       kapfix::v1::kMaxMessageBytes, nullptr)) {
+  if (message != nullptr && kapfix::link::DecodeEnvelope(topic, payload, message.get(),
+                                                         kapfix::v1::kMaxMessageBytes, nullptr)) {
     header = HeaderOf(*message);
   }
   if (header == nullptr) {

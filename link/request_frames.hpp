@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 // Frames after the routing id the server keeps of a request; the rest are read and dropped
 // (issue 15, item 4: a peer's frame count never decides how much the agent keeps).
@@ -27,4 +27,4 @@ struct RequestFrames {
 // `count`: how many there were after the routing id, in all.
 RequestFrames ParseRequestFrames(std::span<const std::string_view> kept, std::size_t count);
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,4 +1,4 @@
-#include "agent/server/connection_monitor.hpp"
+#include "link/connection_monitor.hpp"
 
 #include <linux/tcp.h>  // tcp_info with tcpi_bytes_received (glibc's <netinet/tcp.h> lacks it)
 #include <netinet/in.h>
@@ -13,7 +13,7 @@
 #include <unordered_map>
 #include <utility>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 namespace {
 
 constexpr int kEvents = ZMQ_EVENT_ACCEPTED | ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_CLOSED |
@@ -138,4 +138,4 @@ void ConnectionMonitor::Serve(zmq::socket_t& events) {
   }
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

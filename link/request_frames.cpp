@@ -1,8 +1,8 @@
-#include "agent/server/request_frames.hpp"
+#include "link/request_frames.hpp"
 
 #include <algorithm>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 RequestFrames ParseRequestFrames(std::span<const std::string_view> kept, std::size_t count) {
   RequestFrames frames;
@@ -25,4 +25,4 @@ RequestFrames ParseRequestFrames(std::span<const std::string_view> kept, std::si
   return frames;
 }
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,6 +1,6 @@
 #pragma once
 
-// Internal to kapfix_agent_server (includes ZeroMQ): watches one server socket's connections
+// Server side of the link (includes ZeroMQ): watches one server socket's connections
 // through libzmq's socket monitor, on its own thread (issue 15, items 3 and 11).
 // - Connection budget: at most max_connections at once. A connection accepted beyond it makes
 //   room by shutting down the oldest open one that has not sent a whole ZMTP greeting (64
@@ -21,7 +21,7 @@
 #include <thread>
 #include <zmq.hpp>
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 struct ConnectionMonitorOptions {
   std::size_t max_connections = 4096;                // [count] at once, on this socket
@@ -59,4 +59,4 @@ class ConnectionMonitor {
   std::atomic<std::uint64_t> handshakes_failed_{0};
 };
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link

@@ -1,4 +1,4 @@
-#include "tools/ctl/handshake_monitor.hpp"
+#include "link/handshake_monitor.hpp"
 
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "tools/ctl/wake_signal.hpp"
+#include "link/wake_signal.hpp"
 
 #include <sys/eventfd.h>
 #include <unistd.h>

@@ -1,10 +1,10 @@
-#include "tools/ctl/session_reader.hpp"
+#include "link/legacy_session_reader.hpp"
 
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 
 #include "kapfix/v1/envelope_codec.hpp"
-#include "tools/ctl/session_recorder.hpp"
 
 namespace kapfix::link {
 namespace {
@@ -32,25 +32,31 @@ bool GetBlock(std::ifstream& in, std::string& block) {
 
 }  // namespace
 
-SessionReader::SessionReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+LegacySessionReader::LegacySessionReader(const std::string& path)
+    : path_(path), in_(path, std::ios::binary) {
   if (!in_) throw std::runtime_error("cannot open '" + path + "'");
-  std::string magic(kSessionMagic.size(), '\0');
+  std::string magic(kLegacySessionMagic.size(), '\0');
   if (!in_.read(magic.data(), static_cast<std::streamsize>(magic.size())) ||
-      magic != kSessionMagic) {
-    throw std::runtime_error("'" + path + "' is not a kapfix session recording");
+      magic != kLegacySessionMagic) {
+    throw std::runtime_error("'" + path + "' is not a KFXREC01 session recording");
   }
 }
 
-std::optional<RecordedMessage> SessionReader::Next() {
+std::optional<RecordedMessage> LegacySessionReader::Next() {
+  const std::streamoff offset = in_.tellg();
   RecordedMessage message;
   std::uint64_t time = 0;
   if (!GetLittleEndian(in_, time)) {
-    if (!in_.eof() || in_.gcount() != 0) error_ = "'" + path_ + "' ends inside a message";
+    if (!in_.eof() || in_.gcount() != 0) {
+      error_ =
+          "'" + path_ + "' (KFXREC01) ends inside the message at byte " + std::to_string(offset);
+    }
     return std::nullopt;
   }
   message.receive_time_us = static_cast<std::int64_t>(time);
   if (!GetBlock(in_, message.topic) || !GetBlock(in_, message.payload)) {
-    error_ = "'" + path_ + "' ends inside a message or holds a corrupted length";
+    error_ = "'" + path_ + "' (KFXREC01) ends inside the message at byte " +
+             std::to_string(offset) + " or holds a corrupted length there";
     return std::nullopt;
   }
   return message;

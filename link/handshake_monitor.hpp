@@ -1,6 +1,6 @@
 #pragma once
 
-// Internal to kapfix_link_client (includes ZeroMQ): why the agent would not let this station
+// Internal to kapfix_link's client (includes ZeroMQ): why the agent would not let this station
 // in. A CurveZMQ refusal happens inside ZeroMQ's handshake, where no reply can carry a reason;
 // the socket's monitor events are the only trace of it, and an operator with a wrong key
 // deserves better than "no answer".

@@ -1,6 +1,6 @@
 #pragma once
 
-// Internal to kapfix_agent_server (includes ZeroMQ): the ZAP handler (ZeroMQ RFC 27) that
+// Server side of the link (includes ZeroMQ): the ZAP handler (ZeroMQ RFC 27) that
 // decides, for every CurveZMQ handshake on a server's context, whether the station's public
 // key is authorised. It runs on its own thread with its own REP socket, bound to
 // inproc://zeromq.zap.01 in that context before the server socket binds.
@@ -16,9 +16,9 @@
 #include <unordered_map>
 #include <zmq.hpp>
 
-#include "agent/server/curve_server_keys.hpp"
+#include "link/curve_server_keys.hpp"
 
-namespace kapfix::agent {
+namespace kapfix::link {
 
 inline constexpr const char* kZapDomain = "kapfix";
 
@@ -59,4 +59,4 @@ class ZapHandler {
   std::atomic<std::uint64_t> refused_{0};
 };
 
-}  // namespace kapfix::agent
+}  // namespace kapfix::link
