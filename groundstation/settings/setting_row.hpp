@@ -1,6 +1,6 @@
 #pragma once
 
-// One operator setting (a `kapfix-ctl set` key, tools/ctl/setting_key.hpp): its editor and,
+// One operator setting (a `kapfix-ctl set` key, link/setting_key.hpp): its editor and,
 // next to it, what became of the last change — pending, accepted, or the agent's reason for
 // refusing it. The row speaks in text values, the same the command line uses, so that one
 // parser (MakeSetCommand) turns every change into its command.

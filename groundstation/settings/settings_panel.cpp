@@ -13,7 +13,7 @@
 
 #include "groundstation/settings/calibration_view.hpp"
 #include "groundstation/settings/setting_row.hpp"
-#include "tools/ctl/setting_key.hpp"
+#include "link/setting_key.hpp"
 
 namespace kapfix::station {
 namespace {
@@ -46,7 +46,7 @@ QString GroupTitle(const FieldDescriptor& command_field) {
 }
 
 // "dead_band" → "Dead band [px]".
-QString Label(const kapfix::ctl::SettingKey& key) {
+QString Label(const kapfix::link::SettingKey& key) {
   QString label = QString::fromStdString(key.name).replace(QLatin1Char('_'), QLatin1Char(' '));
   label[0] = label[0].toUpper();
   const std::string& unit = key.entry.options->unit();
@@ -64,7 +64,7 @@ QStringList Words(const google::protobuf::EnumDescriptor& type) {
   return words;
 }
 
-SettingRow::Spec SpecOf(const kapfix::ctl::SettingKey& key) {
+SettingRow::Spec SpecOf(const kapfix::link::SettingKey& key) {
   const FieldDescriptor& field = *key.entry.field;
   const kapfix::v1::SettingOptions& o = *key.entry.options;
   SettingRow::Spec spec;
@@ -165,7 +165,7 @@ bool SameValue(const QString& a, const QString& b) {
 
 std::vector<Group> Groups() {
   std::vector<Group> groups;
-  for (const kapfix::ctl::SettingKey& key : kapfix::ctl::SettingKeys()) {
+  for (const kapfix::link::SettingKey& key : kapfix::link::SettingKeys()) {
     const QString title = GroupTitle(*key.entry.command_field);
     auto group = std::find_if(groups.begin(), groups.end(),
                               [&title](const Group& g) { return g.title == title; });
@@ -226,7 +226,7 @@ SettingsPanel::SettingsPanel(AgentClient& client, QWidget* parent)
 void SettingsPanel::send(const QString& key, const QString& value) {
   SettingRow* setting = row(key);
   std::string error;
-  auto command = kapfix::ctl::MakeSetCommand(key.toStdString(), value.toStdString(), &error);
+  auto command = kapfix::link::MakeSetCommand(key.toStdString(), value.toStdString(), &error);
   if (!command) {
     setting->markRefused(QString::fromStdString(error));
     return;

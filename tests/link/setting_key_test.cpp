@@ -1,16 +1,16 @@
-#include "tools/ctl/setting_key.hpp"
+#include "link/setting_key.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace kapfix::ctl {
+namespace kapfix::link {
 namespace {
 
 using ::testing::HasSubstr;
 
-TEST(CtlSettingKeyTest, GainKeySetsThatGainOnly) {
+TEST(SettingKeyTest, GainKeySetsThatGainOnly) {
   const auto command = MakeSetCommand("p", "0.5", nullptr);
   ASSERT_TRUE(command.has_value());
   ASSERT_TRUE(command->has_set_gains());
@@ -18,7 +18,7 @@ TEST(CtlSettingKeyTest, GainKeySetsThatGainOnly) {
   EXPECT_FALSE(command->set_gains().has_i());
 }
 
-TEST(CtlSettingKeyTest, EveryKeyBuildsACommand) {
+TEST(SettingKeyTest, EveryKeyBuildsACommand) {
   // One readable value per kind of key.
   for (const SettingKey& key : SettingKeys()) {
     bool built = false;
@@ -33,40 +33,40 @@ TEST(CtlSettingKeyTest, EveryKeyBuildsACommand) {
   }
 }
 
-TEST(CtlSettingKeyTest, KeywordValueMapsToItsEnum) {
+TEST(SettingKeyTest, KeywordValueMapsToItsEnum) {
   const auto command = MakeSetCommand("axis", "both", nullptr);
   ASSERT_TRUE(command.has_value());
   EXPECT_EQ(command->set_search().axis(), kapfix::v1::AXIS_BOTH);
 }
 
-TEST(CtlSettingKeyTest, UnknownKeyIsRefusedNamingIt) {
+TEST(SettingKeyTest, UnknownKeyIsRefusedNamingIt) {
   std::string error;
   EXPECT_FALSE(MakeSetCommand("warp_speed", "9", &error).has_value());
   EXPECT_THAT(error, HasSubstr("unknown key 'warp_speed'"));
 }
 
-TEST(CtlSettingKeyTest, TrailingGarbageInANumberIsRefused) {
+TEST(SettingKeyTest, TrailingGarbageInANumberIsRefused) {
   std::string error;
   EXPECT_FALSE(MakeSetCommand("gain", "6dB", &error).has_value());
   EXPECT_THAT(error, HasSubstr("cannot read '6dB'"));
 }
 
-TEST(CtlSettingKeyTest, UnknownKeywordIsRefused) {
+TEST(SettingKeyTest, UnknownKeywordIsRefused) {
   EXPECT_FALSE(MakeSetCommand("sampling", "sometimes", nullptr).has_value());
 }
 
-TEST(CtlSettingKeyTest, NegativeCountIsRefused) {
+TEST(SettingKeyTest, NegativeCountIsRefused) {
   EXPECT_FALSE(MakeSetCommand("patch_size", "-100", nullptr).has_value());
 }
 
-TEST(CtlSettingKeyTest, NanParsesSoThatTheAgentRefusesIt) {
+TEST(SettingKeyTest, NanParsesSoThatTheAgentRefusesIt) {
   const auto command = MakeSetCommand("p", "nan", nullptr);
   ASSERT_TRUE(command.has_value());
   EXPECT_TRUE(std::isnan(command->set_gains().p()));
 }
 
 // Issue 13: the photo keys come from PhotoSettings' schema with nothing added in kapfix-ctl.
-TEST(CtlSettingKeyTest, ShutterBestPhaseSetsThePhotoShutter) {
+TEST(SettingKeyTest, ShutterBestPhaseSetsThePhotoShutter) {
   std::string error;
   const auto command = MakeSetCommand("shutter", "best-phase", &error);
   ASSERT_TRUE(command.has_value()) << error;
@@ -75,7 +75,7 @@ TEST(CtlSettingKeyTest, ShutterBestPhaseSetsThePhotoShutter) {
   EXPECT_FALSE(command->set_photo().has_window_s());
 }
 
-TEST(CtlSettingKeyTest, PhotoKeysSetTheirPhotoSettingsField) {
+TEST(SettingKeyTest, PhotoKeysSetTheirPhotoSettingsField) {
   std::string error;
   const auto window = MakeSetCommand("shutter_window", "2.5", &error);
   ASSERT_TRUE(window.has_value()) << error;
@@ -91,11 +91,11 @@ TEST(CtlSettingKeyTest, PhotoKeysSetTheirPhotoSettingsField) {
   EXPECT_EQ(camera->set_photo().camera(), kapfix::v1::PHOTO_CAMERA_GPHOTO2);
 }
 
-TEST(CtlSettingKeyTest, UnknownShutterWordIsRefused) {
+TEST(SettingKeyTest, UnknownShutterWordIsRefused) {
   std::string error;
   EXPECT_FALSE(MakeSetCommand("shutter", "best_phase", &error).has_value());
   EXPECT_THAT(error, HasSubstr("best_phase"));
 }
 
 }  // namespace
-}  // namespace kapfix::ctl
+}  // namespace kapfix::link

@@ -2,12 +2,15 @@
 #include <memory>
 #include <string>
 
+#include "link/setting_key.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
 #include "tools/ctl/commands/command_output.hpp"
-#include "tools/ctl/setting_key.hpp"
 
 namespace kapfix::ctl {
+using kapfix::link::MakeSetCommand;
+using kapfix::link::SettingKeysHelp;
+
 namespace {
 
 struct SetArguments {

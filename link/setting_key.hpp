@@ -15,7 +15,7 @@
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/settings_schema.hpp"
 
-namespace kapfix::ctl {
+namespace kapfix::link {
 
 struct SettingKey {
   std::string name;  // e.g. "p", "video_fps"
@@ -35,4 +35,4 @@ std::optional<kapfix::v1::Command> MakeSetCommand(std::string_view key, std::str
 // One line per key, for --help.
 std::string SettingKeysHelp();
 
-}  // namespace kapfix::ctl
+}  // namespace kapfix::link

@@ -1,10 +1,10 @@
-#include "tools/ctl/setting_key.hpp"
+#include "link/setting_key.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
 
-namespace kapfix::ctl {
+namespace kapfix::link {
 namespace {
 
 using google::protobuf::FieldDescriptor;
@@ -136,4 +136,4 @@ std::string SettingKeysHelp() {
   return text;
 }
 
-}  // namespace kapfix::ctl
+}  // namespace kapfix::link
