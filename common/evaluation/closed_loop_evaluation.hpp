@@ -92,6 +92,8 @@ struct ClosedLoopFigures {
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)
   std::vector<double> measured_y;         // [px] measured displacement y (NaN: not found)
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
+  std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
+  std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
 };
 
 // Runs the loop: frame 0 becomes the reference; then per frame Step (servos act),
