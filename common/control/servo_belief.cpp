@@ -29,6 +29,17 @@ double Of(const ServoTargets& targets, int axis) {
 
 }  // namespace
 
+std::vector<double> DelayShares(int spread) {
+  std::vector<double> shares;
+  double none_before = 1;  // P(no newer command has arrived)
+  for (int k = 0; k <= spread; ++k) {
+    const double late = static_cast<double>(spread - k) / (spread + 1);  // P(delay > k)
+    shares.push_back(none_before * (1 - late));
+    none_before *= late;
+  }
+  return shares;
+}
+
 bool ServoBeliefOptions::IsValid(std::string* error) const {
   if (min_delay_frames < 1 || max_delay_frames < min_delay_frames ||
       max_delay_frames > kMaxDelayFrames) {
@@ -46,7 +57,9 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
   return true;
 }
 
-ServoBelief::ServoBelief(ServoBeliefOptions options) : options_(Validated(options)) {
+ServoBelief::ServoBelief(ServoBeliefOptions options)
+    : options_(Validated(options)),
+      shares_(DelayShares(options_.max_delay_frames - options_.min_delay_frames)) {
   for (int axis = 0; axis < 2; ++axis) FillCandidates(axis);
 }
 
@@ -62,16 +75,21 @@ void ServoBelief::FillCandidates(int axis) {
   Axis& a = axes_[static_cast<std::size_t>(axis)];
   a.candidates.clear();
   for (int k = options_.min_delay_frames; k <= options_.max_delay_frames; ++k) {
-    Candidate c{-1, Of(options_.initial, axis)};
+    const double prior = shares_[static_cast<std::size_t>(k - options_.min_delay_frames)];
+    Candidate c{-1, Of(options_.initial, axis), prior};
     for (auto it = sent_.rbegin(); it != sent_.rend(); ++it) {
       if (it->frame <= exposed_ - k) {
-        c = {it->order, Of(it->targets, axis)};
+        c = {it->order, Of(it->targets, axis), prior};
         break;
       }
     }
-    const bool known = std::any_of(a.candidates.begin(), a.candidates.end(),
-                                   [&c](const Candidate& o) { return o.order == c.order; });
-    if (!known) a.candidates.push_back(c);
+    const auto known = std::find_if(a.candidates.begin(), a.candidates.end(),
+                                    [&c](const Candidate& o) { return o.order == c.order; });
+    if (known == a.candidates.end()) {
+      a.candidates.push_back(c);
+    } else {
+      known->prior += prior;
+    }
   }
   // The servo follows the newest pulse it has seen: never a command older than one already
   // in effect (unless nothing else is left, e.g. the history was cut).
@@ -84,9 +102,12 @@ void ServoBelief::FillCandidates(int axis) {
 
 double ServoBelief::Expected(int axis) const {
   const Axis& a = axes_[static_cast<std::size_t>(axis)];
-  double sum = 0;
-  for (const Candidate& c : a.candidates) sum += c.deg;
-  return sum / static_cast<double>(a.candidates.size());
+  double sum = 0, weights = 0;
+  for (const Candidate& c : a.candidates) {
+    sum += c.prior * c.deg;
+    weights += c.prior;
+  }
+  return weights > 0 ? sum / weights : a.candidates.front().deg;
 }
 
 ServoTargets ServoBelief::Expose(std::int64_t frame) {
@@ -130,7 +151,7 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
     std::int64_t best_order = a.in_effect;
     for (const Candidate& c : a.candidates) {
       const double miss = c.deg / deg_per_px + displacement_px - predicted;
-      const double weight = std::exp(-0.5 * miss * miss / spread_sq);
+      const double weight = c.prior * std::exp(-0.5 * miss * miss / spread_sq);
       weight_sum += weight;
       weighted += weight * c.deg;
       if (std::abs(miss) < best) {

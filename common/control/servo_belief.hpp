@@ -21,6 +21,13 @@ struct ServoBeliefOptions {
   bool IsValid(std::string* error) const;
 };
 
+// [1] When each command's latency is drawn uniformly from spread + 1 consecutive values, the
+// share of frames whose command in effect was sent min_delay + k frames before (k = 0…spread):
+// the servo follows the newest pulse that has reached it, so a short delay is more likely
+// than a long one beyond the first (spread 1: ½, ½; spread 3: 0.25, 0.375, 0.28, 0.09).
+// P(k or less) = 1 − Π_{i=0…k} (spread − i) / (spread + 1).
+std::vector<double> DelayShares(int spread);
+
 // What the loop believes the servos showed while a frame was exposed. A hobby servo cannot
 // report its angle, so the belief is built from the commands the loop sent.
 //
@@ -38,7 +45,7 @@ struct ServoBeliefOptions {
 // The swing is smooth over a frame while the candidates differ by its whole per-frame motion,
 // so the choice is right whenever it matters; when the candidates nearly agree a wrong choice
 // costs little. Without a measurement (or a history to extrapolate) the belief is the
-// candidates' mean.
+// candidates' mean, weighted by how often each delay is the one in effect (DelayShares).
 class ServoBelief {
  public:
   // Throws std::invalid_argument for options that are not IsValid.
@@ -48,7 +55,7 @@ class ServoBelief {
   // rate-limited). Frames must not go backwards.
   void Sent(std::int64_t frame, const ServoTargets& command);
   // The frame about to be processed; returns the expected angles it was seen through (the
-  // mean of the commands that may be in effect).
+  // mean of the commands that may be in effect, weighted by DelayShares).
   ServoTargets Expose(std::int64_t frame);
   // The angles the exposed frame was seen through, given its measurement and the
   // calibration the controller reconstructs the swing with; remembers the choice.
@@ -70,6 +77,7 @@ class ServoBelief {
   struct Candidate {
     std::int64_t order;  // -1: the initial angles
     double deg;
+    double prior;  // [1] DelayShares of the delays it stands for
   };
   struct View {
     std::int64_t frame;
@@ -88,6 +96,7 @@ class ServoBelief {
   double ResolveAxis(int axis, double displacement_px, double deg_per_px);
 
   ServoBeliefOptions options_;
+  std::vector<double> shares_;  // DelayShares of the delay range
   std::deque<Command> sent_;
   std::int64_t next_order_ = 0;
   std::int64_t exposed_ = 0;

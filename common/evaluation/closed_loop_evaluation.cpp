@@ -21,20 +21,14 @@ SimulatedPlatformOptions WorldPlatform(const ClosedLoopOptions& options) {
   return platform;
 }
 
-// [frames] from a frame's capture to the first frame showing the command sent for it, as the
-// loop assumes it: 1 + the servo's latency, its mean when the latency jitters (what a
-// latency calibration would find).
-int ActuationDelay(const SimulatedPlatformOptions& platform) {
-  const SimulatedServoOptions& pan = platform.pan;
-  const int high = std::max(pan.latency_frames, pan.latency_max_frames);
-  return 1 + (pan.latency_frames + high + 1) / 2;
-}
-
 PredictiveOptions EffectivePredictive(const ClosedLoopOptions& options) {
   PredictiveOptions predictive = options.predictive;
   if (predictive.predictor.lead_frames == 0) {
-    // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L.
-    predictive.predictor.lead_frames = ActuationDelay(WorldPlatform(options));
+    // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L;
+    // with a jittering latency, aimed at every delay it may take.
+    const SimulatedServoOptions& pan = WorldPlatform(options).pan;
+    predictive.predictor.lead_frames = 1 + pan.latency_frames;
+    predictive.lead_jitter_frames = std::max(0, pan.latency_max_frames - pan.latency_frames);
   }
   return predictive;
 }

@@ -37,7 +37,8 @@ struct ClosedLoopOptions {
   std::string strategy = "pyr";
   std::string controller = "predictive";  // or "p", "pid"
   ControllerGains gains;
-  // lead_frames is set from the pan servo's latency (1 + latency) when left at 0.
+  // lead_frames is set from the pan servo's latency (1 + latency) when left at 0, and
+  // lead_jitter_frames then from its jitter (latency_max_frames − latency_frames).
   PredictiveOptions predictive = [] {
     PredictiveOptions o;
     o.predictor.lead_frames = 0;
