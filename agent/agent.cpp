@@ -62,6 +62,11 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   o.tilt.min_deg = config.servo.tilt.limits.min_deg;
   o.tilt.max_deg = config.servo.tilt.limits.max_deg;
   o.tilt.initial_deg = config.servo.tilt.limits.park_deg;
+  // The simulated servos are exactly as fast as the limiter lets the agent command them (the
+  // configured max_rate is the servo's rated speed or less): every command it sends is one
+  // the servo reaches, so the loop's belief of the angle (the command) can be right.
+  o.pan.rate_limit_deg_per_frame = config.servo.pan.limits.max_rate_deg_per_s / config.camera.fps;
+  o.tilt.rate_limit_deg_per_frame = config.servo.tilt.limits.max_rate_deg_per_s / config.camera.fps;
   return o;
 }
 

@@ -80,6 +80,21 @@ ClosedLoopOptions Options(const World& world, const std::string& controller, dou
   return o;
 }
 
+// One line per frame of a flight: the true view error, the servos' true output angles, what
+// the loop believed them to be and what it commanded after the frame, and the measured
+// displacement against the true one (−view error) — to see where a world's error is made.
+void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
+  std::ofstream out(path);
+  out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
+         "commanded_tilt,measured_x,measured_y\n";
+  for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
+    out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
+        << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
+        << f.believed[k].tilt_deg << ',' << f.commanded[k].pan_deg << ',' << f.commanded[k].tilt_deg
+        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << '\n';
+  }
+}
+
 double Median(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
@@ -112,7 +127,7 @@ int Main(int argc, char** argv) {
   int frames = 0, seeds = 3, sweep_scenes = 0;
   std::string out_dir = "loop-bench";
   std::vector<std::string> only_worlds, only_scenes, only_controllers;
-  bool detail = false;
+  bool detail = false, trace = false;
   app.add_flag("--quick", quick, "fewer frames and a smaller P-gain sweep (a few minutes)");
   app.add_option("--frames", frames,
                  "frames per flight after the reference (default 500; quick 250)")
@@ -129,6 +144,9 @@ int Main(int argc, char** argv) {
                  "only these controllers (default predictive pid p); P's sweep always runs");
   app.add_flag("--detail", detail,
                "one line per flight on stderr: x/y RMS, the matcher's miss, forecast share");
+  app.add_flag("--trace", trace,
+               "per flight, DIR/trace_WORLD_SCENE_CONTROLLER_GAIN_SEED.csv: one line per frame "
+               "(view error, true/believed/commanded servo angles, measured displacement)");
   app.add_option("--out", out_dir, "folder for loop.csv, loop_heatmap.png, summary.json");
   CLI11_PARSE(app, argc, argv);
   if (frames == 0) frames = quick ? 200 : 500;
@@ -187,6 +205,13 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "\r[%zu/%zu] %-9s %-16s %-10s %4.2f seed %d: %6.2f px   ", done, total,
                  world.name.c_str(), scene.c_str(), controller.c_str(), gain, seed,
                  run.figures.rms_error_px);
+    if (trace) {
+      char gain_text[16];
+      std::snprintf(gain_text, sizeof gain_text, "%.2f", gain);
+      WriteTrace(out_dir + "/trace_" + world.name + "_" + scene + "_" + controller + "_" +
+                     gain_text + "_" + std::to_string(seed) + ".csv",
+                 run.figures);
+    }
     if (detail) {
       const ClosedLoopFigures& f = run.figures;
       double late = 0;  // [px] RMS over the flight's second half (after the lock-on)

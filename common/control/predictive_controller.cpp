@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "common/control/servo_belief.hpp"
 
 namespace kapfix {
 namespace {
@@ -27,6 +30,11 @@ const PredictiveOptions& Validated(const PredictiveOptions& options) {
 
 bool PredictiveOptions::IsValid(std::string* error) const {
   if (!predictor.IsValid(error)) return false;
+  if (lead_jitter_frames < 0 || lead_jitter_frames > 100) {
+    if (error)
+      *error = "lead jitter must be 0…100 frames, got " + std::to_string(lead_jitter_frames);
+    return false;
+  }
   if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
     if (error) *error = "min confidence must be in [0, 1], got " + std::to_string(min_confidence);
     return false;
@@ -212,8 +220,15 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
         trust->weight = std::min(1.0, trust->weight + kReturnStep);
       }
     }
-    const std::optional<double> ahead = predictor.Predict();
+    std::optional<double> ahead = predictor.Predict();
     if (!ahead || trust->weight == 0.0) return fallback_deg;
+    if (options_.lead_jitter_frames > 0) {
+      const std::vector<double> shares = DelayShares(options_.lead_jitter_frames);
+      *ahead *= shares[0];
+      for (int k = 1; k <= options_.lead_jitter_frames; ++k) {
+        *ahead += shares[k] * *predictor.Forecast(options_.predictor.lead_frames + k);
+      }
+    }
     *predicting = true;
     const double correction_px = *ahead - current_deg / deg_per_px;
     const double forecast_deg =

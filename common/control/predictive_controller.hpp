@@ -15,6 +15,11 @@ struct PredictiveOptions {
   // capture of a frame to the first frame that shows the command sent for it, i.e. 1 + the
   // servo's latency in frames (SimulatedPlatform::Step).
   SwingPredictorOptions predictor;
+  // [frames] the servo's latency jitter: a command takes effect lead_frames … lead_frames +
+  // this after, so the forecast acted on is the mean over those leads weighted by how often
+  // each is the one in effect (DelayShares), the aim that misses least on average. 0: a
+  // fixed latency.
+  int lead_jitter_frames = 0;
   // Below this match confidence a frame is treated as missing (the model coasts).
   double min_confidence = 0.0;
   // Online calibration: while the estimate of an axis's deg per px is trusted, the

@@ -8,6 +8,7 @@
 
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
+#include "common/control/servo_belief_controller.hpp"
 
 namespace kapfix {
 namespace {
@@ -20,20 +21,14 @@ SimulatedPlatformOptions WorldPlatform(const ClosedLoopOptions& options) {
   return platform;
 }
 
-// [frames] from a frame's capture to the first frame showing the command sent for it, as the
-// loop assumes it: 1 + the servo's latency, its mean when the latency jitters (what a
-// latency calibration would find).
-int ActuationDelay(const SimulatedPlatformOptions& platform) {
-  const SimulatedServoOptions& pan = platform.pan;
-  const int high = std::max(pan.latency_frames, pan.latency_max_frames);
-  return 1 + (pan.latency_frames + high + 1) / 2;
-}
-
 PredictiveOptions EffectivePredictive(const ClosedLoopOptions& options) {
   PredictiveOptions predictive = options.predictive;
   if (predictive.predictor.lead_frames == 0) {
-    // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L.
-    predictive.predictor.lead_frames = ActuationDelay(WorldPlatform(options));
+    // Capture t → command → Step (latency L: not yet) … → first frame showing it: t + 1 + L;
+    // with a jittering latency, aimed at every delay it may take.
+    const SimulatedServoOptions& pan = WorldPlatform(options).pan;
+    predictive.predictor.lead_frames = 1 + pan.latency_frames;
+    predictive.lead_jitter_frames = std::max(0, pan.latency_max_frames - pan.latency_frames);
   }
   return predictive;
 }
@@ -112,51 +107,38 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   std::unique_ptr<Controller> controller = MakeController(
       options.controller, options.gains, calibration, EffectivePredictive(options), &error);
   const auto* predictive = dynamic_cast<const PredictiveController*>(controller.get());
-  FixationLoop loop(options.fixation, MakeSearchStrategy(options.strategy, &error),
-                    std::move(controller), calibration);
-  // What the controller believes the servos show: the command sent `delay` frames before,
-  // clamped as the servo clamps it (the servos' true output angles stay the simulation's).
-  std::vector<std::pair<int, ServoTargets>> commanded;  // (frame it was sent after, command)
+  // What the controller believes the servos show: built from the commands sent, never from
+  // the servos' true output angles (those stay the simulation's), and resolved from each
+  // frame's measurement when the latency jitters (ServoBelief).
   const ServoTargets initial{platform_options.pan.initial_deg, platform_options.tilt.initial_deg};
-  const auto sent_before = [&commanded, &initial](int frame, int frames_ago) {
-    for (auto it = commanded.rbegin(); it != commanded.rend(); ++it) {
-      if (it->first <= frame - frames_ago) return it->second;
-    }
-    return initial;
-  };
-  // With a jittering latency the loop believes the expectation: the mean of the commands
-  // that may have taken effect (delays 1 + latency … 1 + latency_max).
-  const int delay_lo = 1 + platform_options.pan.latency_frames;
-  const int delay_hi =
-      1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames);
-  const auto seen_through_at = [&sent_before, delay_lo, delay_hi](int frame) {
-    ServoTargets mean{0, 0};
-    for (int k = delay_lo; k <= delay_hi; ++k) {
-      const ServoTargets t = sent_before(frame, k);
-      mean.pan_deg += t.pan_deg / (delay_hi - delay_lo + 1);
-      mean.tilt_deg += t.tilt_deg / (delay_hi - delay_lo + 1);
-    }
-    return mean;
-  };
+  const auto belief = std::make_shared<ServoBelief>(ServoBeliefOptions{
+      1 + platform_options.pan.latency_frames,
+      1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames),
+      initial});
+  FixationLoop loop(
+      options.fixation, MakeSearchStrategy(options.strategy, &error),
+      std::make_unique<ServoBeliefController>(std::move(controller), belief, calibration),
+      calibration);
   // The driver also keeps each command within the servo's rated speed of the previous one,
   // so that the command is what the servo can reach: otherwise the controller's belief
   // (the command) and the servo's true angle part whenever the rate limit bites, and a loop
   // acting on that belief feeds its own error back.
-  const auto limit = ServoReach;
+  ServoTargets last_sent = initial;
+  int last_sent_frame = -1;
   const auto command = [&](int frame, const ServoTargets& targets) {
-    const ServoTargets previous = commanded.empty() ? initial : commanded.back().second;
-    const int frames_since = commanded.empty() ? 1 : frame - commanded.back().first;
+    const int frames_since = last_sent_frame < 0 ? 1 : frame - last_sent_frame;
     const ServoTargets clamped{
-        limit(targets.pan_deg, previous.pan_deg, platform_options.pan.min_deg,
-              platform_options.pan.max_deg,
-              platform_options.pan.rate_limit_deg_per_frame * frames_since),
-        limit(targets.tilt_deg, previous.tilt_deg, platform_options.tilt.min_deg,
-              platform_options.tilt.max_deg,
-              platform_options.tilt.rate_limit_deg_per_frame * frames_since)};
+        ServoReach(targets.pan_deg, last_sent.pan_deg, platform_options.pan.min_deg,
+                   platform_options.pan.max_deg,
+                   platform_options.pan.rate_limit_deg_per_frame * frames_since),
+        ServoReach(targets.tilt_deg, last_sent.tilt_deg, platform_options.tilt.min_deg,
+                   platform_options.tilt.max_deg,
+                   platform_options.tilt.rate_limit_deg_per_frame * frames_since)};
     platform.CommandPan(clamped.pan_deg);
     platform.CommandTilt(clamped.tilt_deg);
-    commanded.emplace_back(frame, clamped);
-    if (commanded.size() > 64) commanded.erase(commanded.begin());
+    belief->Sent(frame, clamped);
+    last_sent = clamped;
+    last_sent_frame = frame;
   };
   // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
   // controller's history starts there, as the agent's does when it fixates mid-stream.
@@ -164,7 +146,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
     const SimulatedFrame reference = platform.CaptureFrame();
     loop.SetReference(reference.image);
     const FixationLoop::Step step =
-        loop.Process(reference.image, seen_through_at(0), options.frame_period_s);
+        loop.Process(reference.image, belief->Expose(0), options.frame_period_s);
     command(0, step.targets);
   }
 
@@ -197,6 +179,8 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
       ++missed;
       figures.measured_x.push_back(nan);
       figures.measured_y.push_back(nan);
+      figures.believed.push_back({nan, nan});
+      figures.commanded.push_back({nan, nan});
       lost += lock_lost ? 1 : 0;
       if (view_error > kGrossErrorPx) {
         ++gross;
@@ -205,10 +189,12 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
       if (progress) progress(i + 1, options.frames);
       continue;
     }
-    const FixationLoop::Step step = loop.Process(frame.image, seen_through_at(frame.frame),
+    const FixationLoop::Step step = loop.Process(frame.image, belief->Expose(frame.frame),
                                                  options.frame_period_s * (1 + missed));
     missed = 0;
+    figures.believed.push_back(belief->Believed());
     command(frame.frame, step.targets);
+    figures.commanded.push_back(last_sent);
     lock_lost = step.lock_lost;
     if (view_error > kGrossErrorPx) {
       ++gross;

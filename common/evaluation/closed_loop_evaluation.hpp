@@ -37,7 +37,8 @@ struct ClosedLoopOptions {
   std::string strategy = "pyr";
   std::string controller = "predictive";  // or "p", "pid"
   ControllerGains gains;
-  // lead_frames is set from the pan servo's latency (1 + latency) when left at 0.
+  // lead_frames is set from the pan servo's latency (1 + latency) when left at 0, and
+  // lead_jitter_frames then from its jitter (latency_max_frames − latency_frames).
   PredictiveOptions predictive = [] {
     PredictiveOptions o;
     o.predictor.lead_frames = 0;
@@ -92,6 +93,8 @@ struct ClosedLoopFigures {
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)
   std::vector<double> measured_y;         // [px] measured displacement y (NaN: not found)
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
+  std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
+  std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
 };
 
 // Runs the loop: frame 0 becomes the reference; then per frame Step (servos act),

@@ -7,13 +7,16 @@
 namespace kapfix {
 
 struct SimulatedServoOptions {
-  double min_deg = -45;                 // [deg] hard limit
-  double max_deg = 45;                  // [deg] hard limit
-  double rate_limit_deg_per_frame = 3;  // [deg/frame] fastest shaft motion
-  double dead_band_deg = 0.05;          // [deg] position errors below this are not corrected
-  double backlash_deg = 0.1;            // [deg] total play between shaft and output
-  int latency_frames = 1;               // [frames] Steps before a command starts to act
-  double initial_deg = 0;               // [deg] shaft and output at start, within the limits
+  double min_deg = -45;  // [deg] hard limit
+  double max_deg = 45;   // [deg] hard limit
+  // [deg/frame] fastest shaft motion, the servo's rated speed. The loop's commands must stay
+  // within it (EvaluateClosedLoop's driver; the agent's limiter, whose max_rate the agent's
+  // simulation takes as this speed) or the servo lags what the loop believes it shows.
+  double rate_limit_deg_per_frame = 3;
+  double dead_band_deg = 0.05;  // [deg] position errors below this are not corrected
+  double backlash_deg = 0.1;    // [deg] total play between shaft and output
+  int latency_frames = 1;       // [frames] Steps before a command starts to act
+  double initial_deg = 0;       // [deg] shaft and output at start, within the limits
   // [frames] latency jitter: when > latency_frames, each command's latency is drawn
   // uniformly from latency_frames…latency_max_frames (seeded); 0 = fixed latency.
   int latency_max_frames = 0;
@@ -29,9 +32,12 @@ struct SimulatedServoOptions {
 // Step does not yet, the one after does). Commands keep their order; a later one replaces
 // the target once its own delay has passed; with latency jitter a command overtaken by a
 // newer one that became active first is dropped, as a servo only ever follows the newest
-// pulse it has seen. NaN commands are ignored (the servo keeps its
-// current target and commanded()), since a broken controller must not move the camera;
-// ±∞ and absurd values are clamped like any other.
+// pulse it has seen: the PWM line carries one pulse width at a time, refreshed every 20 ms,
+// and the servo's electronics drive towards the width of the last pulse they measured — a
+// command held up in the host (USB, scheduler) until its successor was written never
+// appears on the line. The loop's belief (ServoBelief) assumes the same rule. NaN commands are
+// ignored (the servo keeps its current target and commanded()), since a broken controller must not
+// move the camera; ±∞ and absurd values are clamped like any other.
 //
 // Each Step the shaft moves towards the target by at most rate_limit; when it is within
 // dead_band of the target it does not move at all. The output is coupled to the shaft

@@ -1,0 +1,203 @@
+#include "common/control/servo_belief.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace kapfix {
+namespace {
+
+constexpr int kMaxDelayFrames = 1000;
+// [frames] a view older than this no longer says where the swing is now: the extrapolation
+// restarts from the next measured frame.
+constexpr std::int64_t kMaxViewGapFrames = 3;
+constexpr std::size_t kViews = 6;     // views the extrapolation is fitted to
+constexpr double kMinSpreadPx = 1;    // [px] floor of the views' expected miss
+constexpr double kSpreadRate = 0.05;  // [1/frame] EMA rate of the squared miss
+constexpr double kSureShare = 0.9;    // a candidate this likely is taken as in effect
+
+const ServoBeliefOptions& Validated(const ServoBeliefOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("ServoBelief: " + error);
+  return options;
+}
+
+double Of(const ServoTargets& targets, int axis) {
+  return axis == 0 ? targets.pan_deg : targets.tilt_deg;
+}
+
+}  // namespace
+
+std::vector<double> DelayShares(int spread) {
+  std::vector<double> shares;
+  double none_before = 1;  // P(no newer command has arrived)
+  for (int k = 0; k <= spread; ++k) {
+    const double late = static_cast<double>(spread - k) / (spread + 1);  // P(delay > k)
+    shares.push_back(none_before * (1 - late));
+    none_before *= late;
+  }
+  return shares;
+}
+
+bool ServoBeliefOptions::IsValid(std::string* error) const {
+  if (min_delay_frames < 1 || max_delay_frames < min_delay_frames ||
+      max_delay_frames > kMaxDelayFrames) {
+    if (error) {
+      *error = "servo delay must be 1 ≤ min ≤ max ≤ " + std::to_string(kMaxDelayFrames) +
+               " frames, got " + std::to_string(min_delay_frames) + "…" +
+               std::to_string(max_delay_frames);
+    }
+    return false;
+  }
+  if (!std::isfinite(initial.pan_deg) || !std::isfinite(initial.tilt_deg)) {
+    if (error) *error = "servo initial angles must be finite";
+    return false;
+  }
+  return true;
+}
+
+ServoBelief::ServoBelief(ServoBeliefOptions options)
+    : options_(Validated(options)),
+      shares_(DelayShares(options_.max_delay_frames - options_.min_delay_frames)) {
+  for (int axis = 0; axis < 2; ++axis) FillCandidates(axis);
+}
+
+void ServoBelief::Sent(std::int64_t frame, const ServoTargets& command) {
+  sent_.push_back({frame, next_order_++, command});
+  // Keep what the longest delay can still reach, plus the command before it.
+  while (sent_.size() > 2 && sent_[1].frame <= frame - options_.max_delay_frames) {
+    sent_.pop_front();
+  }
+}
+
+void ServoBelief::FillCandidates(int axis) {
+  Axis& a = axes_[static_cast<std::size_t>(axis)];
+  a.candidates.clear();
+  for (int k = options_.min_delay_frames; k <= options_.max_delay_frames; ++k) {
+    const double prior = shares_[static_cast<std::size_t>(k - options_.min_delay_frames)];
+    Candidate c{-1, Of(options_.initial, axis), prior};
+    for (auto it = sent_.rbegin(); it != sent_.rend(); ++it) {
+      if (it->frame <= exposed_ - k) {
+        c = {it->order, Of(it->targets, axis), prior};
+        break;
+      }
+    }
+    const auto known = std::find_if(a.candidates.begin(), a.candidates.end(),
+                                    [&c](const Candidate& o) { return o.order == c.order; });
+    if (known == a.candidates.end()) {
+      a.candidates.push_back(c);
+    } else {
+      known->prior += prior;
+    }
+  }
+  // The servo follows the newest pulse it has seen: never a command older than one already
+  // in effect (unless nothing else is left, e.g. the history was cut).
+  std::vector<Candidate> newer;
+  for (const Candidate& c : a.candidates) {
+    if (c.order >= a.in_effect) newer.push_back(c);
+  }
+  if (!newer.empty()) a.candidates = std::move(newer);
+}
+
+double ServoBelief::Expected(int axis) const {
+  const Axis& a = axes_[static_cast<std::size_t>(axis)];
+  double sum = 0, weights = 0;
+  for (const Candidate& c : a.candidates) {
+    sum += c.prior * c.deg;
+    weights += c.prior;
+  }
+  return weights > 0 ? sum / weights : a.candidates.front().deg;
+}
+
+ServoTargets ServoBelief::Expose(std::int64_t frame) {
+  exposed_ = frame;
+  for (int axis = 0; axis < 2; ++axis) FillCandidates(axis);
+  believed_ = {Expected(0), Expected(1)};
+  return believed_;
+}
+
+double ServoBelief::Predict(const Axis& a) const {
+  // Where the swing should be now: a least-squares line (two or three views) or parabola
+  // (four or more) through the recent views, frames counted from the exposed one.
+  const std::size_t n = a.views.size();
+  if (n == 1) return a.views.front().u_px;
+  const int terms = n >= 4 ? 3 : 2;
+  Eigen::MatrixXd design(static_cast<Eigen::Index>(n), terms);
+  Eigen::VectorXd u(static_cast<Eigen::Index>(n));
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    const double t = static_cast<double>(a.views[k].frame - exposed_);
+    design(row, 0) = 1;
+    design(row, 1) = t;
+    if (terms == 3) design(row, 2) = t * t;
+    u(row) = a.views[k].u_px;
+  }
+  const Eigen::VectorXd fit = design.colPivHouseholderQr().solve(u);
+  return fit(0);
+}
+
+double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per_px) {
+  Axis& a = axes_[static_cast<std::size_t>(axis)];
+  if (!a.views.empty() && a.views.back().frame < exposed_ - kMaxViewGapFrames) a.views.clear();
+  double deg = Expected(axis);
+  if (!a.views.empty() && a.candidates.size() > 1) {
+    // The posterior mean over the candidates, each as likely as its view continues the
+    // swing (Gaussian, with the spread the chosen views have missed by lately): a clear
+    // choice where the candidates part, their mean where the frame cannot tell them apart.
+    const double predicted = Predict(a);
+    const double spread_sq = std::max(kMinSpreadPx * kMinSpreadPx, a.miss_sq);
+    double best = INFINITY, weight_sum = 0, weighted = 0, best_weight = 0;
+    std::int64_t best_order = a.in_effect;
+    for (const Candidate& c : a.candidates) {
+      const double miss = c.deg / deg_per_px + displacement_px - predicted;
+      const double weight = c.prior * std::exp(-0.5 * miss * miss / spread_sq);
+      weight_sum += weight;
+      weighted += weight * c.deg;
+      if (std::abs(miss) < best) {
+        best = std::abs(miss);
+        best_order = c.order;
+        best_weight = weight;
+      }
+    }
+    if (weight_sum > 0) {
+      deg = weighted / weight_sum;
+      if (best_weight / weight_sum > kSureShare) a.in_effect = best_order;
+    } else {
+      deg =
+          std::find_if(a.candidates.begin(), a.candidates.end(), [best_order](const Candidate& c) {
+            return c.order == best_order;
+          })->deg;
+      a.in_effect = best_order;
+    }
+    a.miss_sq += kSpreadRate * (best * best - a.miss_sq);
+  } else if (a.candidates.size() == 1) {
+    a.in_effect = a.candidates.front().order;
+  }
+  a.views.push_back({exposed_, deg / deg_per_px + displacement_px});
+  while (a.views.size() > kViews) a.views.pop_front();
+  return deg;
+}
+
+ServoTargets ServoBelief::Resolve(const ControlInput& input, const LensCalibration& calibration) {
+  const cv::Point2d d = input.displacement_px;
+  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
+    believed_ = {Expected(0), Expected(1)};
+  } else {
+    believed_ = {ResolveAxis(0, d.x, calibration.pan_deg_per_px),
+                 ResolveAxis(1, d.y, calibration.tilt_deg_per_px)};
+  }
+  return believed_;
+}
+
+void ServoBelief::ForgetViews() {
+  for (Axis& a : axes_) a.views.clear();
+}
+
+std::vector<double> ServoBelief::Candidates(int axis) const {
+  std::vector<double> out;
+  for (const Candidate& c : axes_[static_cast<std::size_t>(axis)].candidates) out.push_back(c.deg);
+  return out;
+}
+
+}  // namespace kapfix

@@ -1,0 +1,107 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "common/control/controller.hpp"
+#include "common/control/lens_calibration.hpp"
+
+namespace kapfix {
+
+struct ServoBeliefOptions {
+  // [frames] from the capture of a frame to the first frame that shows the command sent for
+  // it: 1 + the servo's latency, at its shortest and its longest (equal: a fixed latency).
+  int min_delay_frames = 2;
+  int max_delay_frames = 2;
+  ServoTargets initial;  // [deg] what the servos show before the first command (park)
+
+  bool IsValid(std::string* error) const;
+};
+
+// [1] When each command's latency is drawn uniformly from spread + 1 consecutive values, the
+// share of frames whose command in effect was sent min_delay + k frames before (k = 0…spread):
+// the servo follows the newest pulse that has reached it, so a short delay is more likely
+// than a long one beyond the first (spread 1: ½, ½; spread 3: 0.25, 0.375, 0.28, 0.09).
+// P(k or less) = 1 − Π_{i=0…k} (spread − i) / (spread + 1).
+std::vector<double> DelayShares(int spread);
+
+// What the loop believes the servos showed while a frame was exposed. A hobby servo cannot
+// report its angle, so the belief is built from the commands the loop sent.
+//
+// With a fixed latency that is exact: the command sent min_delay_frames before. When the
+// latency jitters, any command sent min…max_delay_frames before may be the one in effect —
+// the servo follows the newest pulse that has reached it, so a slow command is overtaken and
+// the servo never goes back to an older one. Consecutive commands differ by the swing's
+// motion over a frame (up to ~16 px at SPEC §3's swing), so acting on their mean feeds an
+// error of half that, with a random sign, into the controller's reconstruction of the swing
+// (u = angle / deg_per_px + displacement): measured, it cost the predictive controller 25 px
+// RMS where the true angle leaves 6.7 (aero1, 500 frames, latency 1…2 frames).
+//
+// Resolve therefore asks the frame itself: per axis, the candidate whose u continues the
+// recent u (a straight line through the last two resolved frames) is the command in effect.
+// The swing is smooth over a frame while the candidates differ by its whole per-frame motion,
+// so the choice is right whenever it matters; when the candidates nearly agree a wrong choice
+// costs little. Without a measurement (or a history to extrapolate) the belief is the
+// candidates' mean, weighted by how often each delay is the one in effect (DelayShares).
+class ServoBelief {
+ public:
+  // Throws std::invalid_argument for options that are not IsValid.
+  explicit ServoBelief(ServoBeliefOptions options);
+
+  // The command sent after processing `frame` (as the servos were given it: clamped and
+  // rate-limited). Frames must not go backwards.
+  void Sent(std::int64_t frame, const ServoTargets& command);
+  // The frame about to be processed; returns the expected angles it was seen through (the
+  // mean of the commands that may be in effect, weighted by DelayShares).
+  ServoTargets Expose(std::int64_t frame);
+  // The angles the exposed frame was seen through, given its measurement and the
+  // calibration the controller reconstructs the swing with; remembers the choice.
+  ServoTargets Resolve(const ControlInput& input, const LensCalibration& calibration);
+  // Forgets the views (a new reference: displacements are measured against another frame).
+  void ForgetViews();
+
+  // [deg] the belief for the exposed frame: Resolve's choice once it ran, else Expose's mean.
+  const ServoTargets& Believed() const { return believed_; }
+  // The commands that may be in effect for the exposed frame, per axis [deg] (diagnostics).
+  std::vector<double> Candidates(int axis) const;
+
+ private:
+  struct Command {
+    std::int64_t frame;  // sent after processing this frame
+    std::int64_t order;  // sequence number
+    ServoTargets targets;
+  };
+  struct Candidate {
+    std::int64_t order;  // -1: the initial angles
+    double deg;
+    double prior;  // [1] DelayShares of the delays it stands for
+  };
+  struct View {
+    std::int64_t frame;
+    double u_px;  // [px] angle / deg_per_px + displacement: the swing, free of the loop
+  };
+  struct Axis {
+    std::vector<Candidate> candidates;  // for the exposed frame
+    std::int64_t in_effect = -1;        // order of the newest command known to be in effect
+    std::deque<View> views;             // the last resolved views, newest last
+    double miss_sq = 0;                 // [px²] EMA of the chosen candidate's squared miss
+  };
+
+  void FillCandidates(int axis);
+  double Expected(int axis) const;
+  double Predict(const Axis& a) const;  // [px] the swing's view at the exposed frame
+  double ResolveAxis(int axis, double displacement_px, double deg_per_px);
+
+  ServoBeliefOptions options_;
+  std::vector<double> shares_;  // DelayShares of the delay range
+  std::deque<Command> sent_;
+  std::int64_t next_order_ = 0;
+  std::int64_t exposed_ = 0;
+  std::array<Axis, 2> axes_;  // pan, tilt
+  ServoTargets believed_;
+};
+
+}  // namespace kapfix

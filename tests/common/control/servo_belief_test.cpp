@@ -1,0 +1,127 @@
+#include "common/control/servo_belief.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include "common/control/proportional_controller.hpp"
+#include "common/control/servo_belief_controller.hpp"
+#include "common/sim/simulated_servo.hpp"
+
+namespace kapfix {
+namespace {
+
+constexpr LensCalibration kLens{0.1, 0.1};  // [deg/px]
+
+ControlInput Measured(double dx, double dy) {
+  ControlInput input;
+  input.displacement_px = {dx, dy};
+  input.confidence = 0.9;
+  input.found = true;
+  input.dt_s = 0.04;
+  return input;
+}
+
+TEST(ServoBeliefTest, AFixedLatencyBelievesTheCommandSentThatManyFramesBefore) {
+  ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 2, .initial = {5, 6}});
+  EXPECT_DOUBLE_EQ(belief.Expose(1).pan_deg, 5);  // nothing sent yet: the initial angles
+  belief.Sent(0, {1, 2});
+  belief.Sent(1, {3, 4});
+  const ServoTargets at2 = belief.Expose(2);
+  EXPECT_DOUBLE_EQ(at2.pan_deg, 1);
+  EXPECT_DOUBLE_EQ(at2.tilt_deg, 2);
+  EXPECT_DOUBLE_EQ(belief.Expose(3).tilt_deg, 4);
+}
+
+TEST(ServoBeliefTest, DelaySharesFavourShortDelaysWhenNewerCommandsOvertake) {
+  const std::vector<double> one = DelayShares(1);
+  ASSERT_EQ(one.size(), 2u);
+  EXPECT_DOUBLE_EQ(one[0], 0.5);
+  EXPECT_DOUBLE_EQ(one[1], 0.5);
+  const std::vector<double> three = DelayShares(3);
+  ASSERT_EQ(three.size(), 4u);
+  EXPECT_DOUBLE_EQ(three[0], 0.25);
+  EXPECT_DOUBLE_EQ(three[1], 0.375);
+  EXPECT_DOUBLE_EQ(three[2], 0.28125);
+  EXPECT_DOUBLE_EQ(three[3], 0.09375);
+  EXPECT_EQ(DelayShares(0), std::vector<double>{1.0});
+}
+
+TEST(ServoBeliefTest, WithoutAMeasurementTheBeliefIsTheCandidatesWeightedMean) {
+  ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
+  belief.Sent(0, {0, 0});
+  belief.Sent(1, {2, 4});
+  belief.Expose(3);
+  ControlInput lost;
+  const ServoTargets believed = belief.Resolve(lost, kLens);
+  EXPECT_DOUBLE_EQ(believed.pan_deg, 1);
+  EXPECT_DOUBLE_EQ(believed.tilt_deg, 2);
+}
+
+// A servo whose latency jitters between 1 and 2 frames, following a swing-like command: the
+// belief resolved from each frame's measurement is the servo's true angle, where the mean of
+// the commands that may be in effect is wrong by half a frame's motion on every frame.
+TEST(ServoBeliefTest, ResolvesTheCommandInEffectUnderLatencyJitter) {
+  SimulatedServoOptions servo_options;
+  servo_options.latency_frames = 1;
+  servo_options.latency_max_frames = 2;
+  servo_options.backlash_deg = 0;
+  servo_options.dead_band_deg = 0;
+  servo_options.rate_limit_deg_per_frame = 50;
+  servo_options.seed = 7;
+  SimulatedServo servo(servo_options);
+  ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
+  const auto swing = [](double t) {  // [px] the platform's view, SPEC §3's swing
+    return 100 * std::sin(2 * std::numbers::pi * t / 40);
+  };
+  int right = 0, counted = 0;
+  double resolved_sq = 0, mean_sq = 0;
+  for (int t = 0; t < 400; ++t) {
+    if (t > 0) servo.Step();
+    const double angle = servo.angle();
+    // The content moves against the view: displacement = −(swing + servo's turn).
+    const double dx = -(swing(t) + angle / kLens.pan_deg_per_px);
+    const ServoTargets expected = belief.Expose(t);
+    const ServoTargets resolved = belief.Resolve(Measured(dx, 0), kLens);
+    if (t >= 10) {
+      ++counted;
+      // Within 0.2 px, where consecutive commands differ by up to 16 px.
+      right += std::abs(resolved.pan_deg - angle) < 0.02 ? 1 : 0;
+      resolved_sq += std::pow(resolved.pan_deg - angle, 2);
+      mean_sq += std::pow(expected.pan_deg - angle, 2);
+    }
+    const double command = -swing(t + 2.5) * kLens.pan_deg_per_px;
+    servo.Command(command);
+    belief.Sent(t, {command, 0});
+  }
+  EXPECT_GE(right, counted * 95 / 100) << right << " of " << counted;
+  EXPECT_LT(std::sqrt(resolved_sq / counted), 0.1 * std::sqrt(mean_sq / counted))
+      << "resolved RMS " << std::sqrt(resolved_sq / counted) << " deg, mean's "
+      << std::sqrt(mean_sq / counted) << " deg";
+}
+
+TEST(ServoBeliefTest, RefusesAnEmptyDelayRange) {
+  EXPECT_THROW(ServoBelief({.min_delay_frames = 3, .max_delay_frames = 2, .initial = {}}),
+               std::invalid_argument);
+  EXPECT_THROW(ServoBelief({.min_delay_frames = 0, .max_delay_frames = 2, .initial = {}}),
+               std::invalid_argument);
+}
+
+TEST(ServoBeliefControllerTest, HandsTheControllerTheBeliefNotTheCallersGuess) {
+  auto belief = std::make_shared<ServoBelief>(
+      ServoBeliefOptions{.min_delay_frames = 2, .max_delay_frames = 2, .initial = {0, 0}});
+  ServoBeliefController controller(
+      std::make_unique<ProportionalController>(ControllerGains{}, kLens), belief, kLens);
+  belief->Sent(0, {1.5, -2});
+  belief->Expose(2);
+  const ServoTargets target = controller.Update(Measured(0, 0), {99, 99});
+  EXPECT_DOUBLE_EQ(target.pan_deg, 1.5);
+  EXPECT_DOUBLE_EQ(target.tilt_deg, -2);
+  EXPECT_EQ(controller.name(), "p");
+}
+
+}  // namespace
+}  // namespace kapfix
