@@ -192,7 +192,7 @@ FrameOutcome ModeRunner::Process(const CapturedFrame& frame, const ServoTargets&
   ApplyPending(frame, current);
   FrameOutcome outcome = current_->Process(frame, current, dt_s);
   if (std::optional<ModeEnd> end = current_->TakeEnd()) {
-    return SwitchAfter(std::move(*end), std::move(outcome), frame, current, dt_s);
+    return SwitchAfter(std::move(*end), outcome, frame, current, dt_s);
   }
   return outcome;
 }
