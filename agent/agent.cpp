@@ -30,6 +30,9 @@ namespace {
 
 // Hardware: one frame of servo latency assumed until calibration measures it.
 constexpr int kHardwareActuationDelayFrames = 2;
+// [jobs] disk writes waiting at most: calibrations and recordings come one per process
+// (seconds apart), so a full queue means a disk that has stopped.
+constexpr std::size_t kWorkerJobs = 16;
 
 SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind) {
   return kind == MotionKind::kBoat ? SimulatedPlatformOptions::Motion::kBoat
@@ -89,6 +92,62 @@ void ApplyCameraSettings(const CameraConfig& camera, FrameSource& source) {
   }
 }
 
+// The link's CurveZMQ keys, when configured. A fresh install (no station authorised yet)
+// serves this machine only: `link` is narrowed to loopback without keys. Throws
+// std::runtime_error when the keys cannot be read.
+std::optional<kapfix::link::CurveServerKeys> ReadLinkKeys(LinkConfig* link, bool insecure) {
+  std::optional<kapfix::link::CurveServerKeys> curve;
+  std::string error;
+  if (!link->curve_secret_key_file.empty()) {
+    // Fresh install (the package's postinst makes the agent's keys and an empty list): no
+    // station can be authorised yet, so serve this machine only and say how to add one.
+    std::string why;
+    const auto stations = kapfix::link::ReadPublicKeyLines(link->curve_authorized_keys_file, &why);
+    if (stations && stations->empty()) {
+      spdlog::warn(
+          "link: no station key in {} yet: serving this machine only (127.0.0.1). To fly from "
+          "a station: kapfix-keygen laptop (on the station), append laptop.pub's line to {}, "
+          "then systemctl restart kapfix-agent; give the station {}",
+          link->curve_authorized_keys_file, link->curve_authorized_keys_file,
+          std::filesystem::path(link->curve_secret_key_file).replace_extension(".pub").string());
+      link->command_address = LoopbackAddress(link->command_address);
+      link->stream_address = LoopbackAddress(link->stream_address);
+      link->curve_secret_key_file.clear();
+      link->curve_authorized_keys_file.clear();
+    }
+  }
+  if (!link->curve_secret_key_file.empty()) {
+    curve =
+        kapfix::link::ReadCurveServerKeys(link->curve_secret_key_file, link->curve_authorized_keys_file, &error);
+    if (!curve) throw std::runtime_error(error);
+    spdlog::info("link: CurveZMQ, {} authorised station key(s)", curve->authorized_stations.size());
+  }
+  if (insecure && link->curve_secret_key_file.empty()) {
+    spdlog::warn("--insecure: the link is open to anyone who can reach {} and {}",
+                 link->command_address, link->stream_address);
+  }
+  return curve;
+}
+
+// Each link server's connection budget, after raising the open-file limit.
+std::size_t ConnectionBudget() {
+  // Before binding: descriptors for many connections plus the photos (issue 15, item 3).
+  constexpr std::uint64_t kWantedOpenFiles = 65536;
+  constexpr std::uint64_t kEnoughOpenFiles = 4096;  // ~100 s of 33 new connections a second
+  const std::uint64_t open_files = link::RaiseOpenFileLimit(kWantedOpenFiles);
+  if (open_files < kEnoughOpenFiles) {
+    spdlog::warn("link: at most {} open files (wanted {}): raise LimitNOFILE", open_files,
+                 kWantedOpenFiles);
+  }
+  link::ReturnLargeBuffersWhenFreed();
+  kapfix::v1::QuietLibprotobufLog();  // invalid UTF-8 from a peer: refused, not printed
+  // Each server's connection budget: half of the descriptors, less a reserve for photos,
+  // calibrations and logs.
+  constexpr std::uint64_t kReservedFiles = 256;
+  return static_cast<std::size_t>(
+      std::clamp<std::uint64_t>((open_files - std::min(open_files, kReservedFiles)) / 2, 16, 4096));
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> MakeCamera(const CameraConfig& camera) {
@@ -134,9 +193,7 @@ bool CheckLinkExposure(const LinkConfig& link, bool insecure, std::string* error
   return true;
 }
 
-// Named exception to the function-size check: the agent's wiring, in construction order
-// (issue 11: Agent::Agent is to shrink to wiring).
-// NOLINTNEXTLINE(readability-function-size)
+// The agent's wiring, in construction order.
 Agent::Agent(AgentConfig config, AgentOptions options)
     : config_(std::move(config)), options_(options) {
   std::string error;
@@ -150,38 +207,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
   std::optional<ResumeRecord> resumed;
   if (options_.resume && config_.resume) resumed = LoadResumeRecord(*resume_store_, &config_);
-  std::optional<kapfix::link::CurveServerKeys> curve;
-  if (!config_.link.curve_secret_key_file.empty()) {
-    // Fresh install (the package's postinst makes the agent's keys and an empty list): no
-    // station can be authorised yet, so serve this machine only and say how to add one.
-    std::string why;
-    const auto stations =
-        kapfix::link::ReadPublicKeyLines(config_.link.curve_authorized_keys_file, &why);
-    if (stations && stations->empty()) {
-      spdlog::warn(
-          "link: no station key in {} yet: serving this machine only (127.0.0.1). To fly from "
-          "a station: kapfix-keygen laptop (on the station), append laptop.pub's line to {}, "
-          "then systemctl restart kapfix-agent; give the station {}",
-          config_.link.curve_authorized_keys_file, config_.link.curve_authorized_keys_file,
-          std::filesystem::path(config_.link.curve_secret_key_file)
-              .replace_extension(".pub")
-              .string());
-      config_.link.command_address = LoopbackAddress(config_.link.command_address);
-      config_.link.stream_address = LoopbackAddress(config_.link.stream_address);
-      config_.link.curve_secret_key_file.clear();
-      config_.link.curve_authorized_keys_file.clear();
-    }
-  }
-  if (!config_.link.curve_secret_key_file.empty()) {
-    curve = kapfix::link::ReadCurveServerKeys(config_.link.curve_secret_key_file,
-                                              config_.link.curve_authorized_keys_file, &error);
-    if (!curve) throw std::runtime_error(error);
-    spdlog::info("link: CurveZMQ, {} authorised station key(s)", curve->authorized_stations.size());
-  }
-  if (options_.insecure && config_.link.curve_secret_key_file.empty()) {
-    spdlog::warn("--insecure: the link is open to anyone who can reach {} and {}",
-                 config_.link.command_address, config_.link.stream_address);
-  }
+  const std::optional<kapfix::link::CurveServerKeys> curve = ReadLinkKeys(&config_.link, options_.insecure);
   simulated_ = options_.simulate || (config_.camera.backend == CameraBackend::kSim &&
                                      config_.servo.backend == ServoBackend::kSim);
   if (!simulated_ && (config_.camera.backend == CameraBackend::kSim ||
@@ -190,6 +216,53 @@ Agent::Agent(AgentConfig config, AgentOptions options)
         "camera and servos must both be \"sim\" or both real hardware (or use --sim)");
   }
 
+  PredictiveOptions predictive;
+  PipelineOptions pipeline = OpenDevices(&predictive);
+  const std::size_t budget = ConnectionBudget();
+  StartPublisher(curve, budget);
+  StartPhotos();
+  video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
+  telemetry_publisher_ = std::make_unique<TelemetryPublisher>(
+      *publisher_, [video = video_.get()] { return video->dropped(); });
+  // Stored calibrations replace the profiles' nominal deg/px (after the simulation took its
+  // truth from the nominal one: the simulated lens does not change).
+  calibrations_ =
+      std::make_unique<CalibrationStore>(std::filesystem::path(config_.state_dir) / "calibration");
+  for (LensProfile& lens : config_.lenses) {
+    std::string why;
+    if (const auto stored = calibrations_->Load(lens.name, &why)) {
+      lens.ApplyCalibration(*stored);
+      spdlog::info("lens {}: stored calibration {:.5f} / {:.5f} deg/px", lens.name,
+                   stored->pan_deg_per_px, stored->tilt_deg_per_px);
+    } else if (!why.empty()) {
+      spdlog::warn("lens {}: stored calibration ignored: {}", lens.name, why);
+    }
+  }
+  PhotoStore* store = photo_store_.get();
+  state_ = std::make_unique<StateKeeper>(
+      config_, *publisher_, simulated_, [store] { return store->count(); }, calibrations_.get());
+  state_republisher_ = std::make_unique<StateRepublisher>(*state_);
+  worker_ = std::make_shared<WorkQueue>("disk writer", kWorkerJobs);
+  state_->StoreCalibrationsOn(worker_.get());
+
+  StartModes(resumed, pipeline, predictive);
+  std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
+  if (options_.keep_telemetry) observers.push_back(&telemetry_);
+  // The devices' health, kept by the pipeline, goes to systemctl status and the AgentState.
+  pipeline.on_health = [notifier = notifier_.get(),
+                        state = state_.get()](const DevicesHealth& health) {
+    notifier->Status(StatusLine(health));
+    state->OnDeviceHealth(health);
+  };
+  pipeline_ = std::make_unique<Pipeline>(*source_, *servos_, *modes_, std::move(observers),
+                                         std::move(pipeline));
+  state_->OnDeviceHealth(pipeline_->health());  // as it is at start
+
+  StartCommandServer(curve, budget);
+}
+
+PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
+  std::string error;
   const double fps = config_.camera.fps;
   PipelineOptions pipeline;
   pipeline.frames = options_.frames;
@@ -254,21 +327,11 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   notifier_ = std::make_unique<SystemdNotifier>();
   pipeline.on_alive = [notifier = notifier_.get()] { notifier->Alive(); };
 
-  // Before binding: descriptors for many connections plus the photos (issue 15, item 3).
-  constexpr std::uint64_t kWantedOpenFiles = 65536;
-  constexpr std::uint64_t kEnoughOpenFiles = 4096;  // ~100 s of 33 new connections a second
-  const std::uint64_t open_files = link::RaiseOpenFileLimit(kWantedOpenFiles);
-  if (open_files < kEnoughOpenFiles) {
-    spdlog::warn("link: at most {} open files (wanted {}): raise LimitNOFILE", open_files,
-                 kWantedOpenFiles);
-  }
-  link::ReturnLargeBuffersWhenFreed();
-  kapfix::v1::QuietLibprotobufLog();  // invalid UTF-8 from a peer: refused, not printed
-  // Each server's connection budget: half of the descriptors, less a reserve for photos,
-  // calibrations and logs.
-  constexpr std::uint64_t kReservedFiles = 256;
-  const std::size_t budget = static_cast<std::size_t>(
-      std::clamp<std::uint64_t>((open_files - std::min(open_files, kReservedFiles)) / 2, 16, 4096));
+  *predictive_out = predictive;
+  return pipeline;
+}
+
+void Agent::StartPublisher(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget) {
   StreamPublisherOptions publisher_options;
   publisher_options.max_connections = budget;
   publisher_options.bind_endpoint = config_.link.stream_address;
@@ -280,6 +343,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   // The log lines go to the station too; removed again in ~Agent, before the publisher goes.
   log_publisher_ = std::make_shared<LogPublisher>(*publisher_);
   spdlog::default_logger()->sinks().push_back(log_publisher_);
+}
+
+void Agent::StartPhotos() {
   photo_store_ = std::make_unique<PhotoStore>(config_.photos.dir);
   photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
     return state_->settings()->lens;  // photos are taken once the agent runs
@@ -290,28 +356,11 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   photos_->SetStillCamera(std::make_shared<StillCameraTrigger>(
       std::make_unique<Gphoto2StillCamera>(), options_.still_camera_delete));
   photos_->SetCamera(options_.photo_camera);
-  video_ = std::make_unique<VideoDownlink>(*publisher_, config_.video);
-  telemetry_publisher_ = std::make_unique<TelemetryPublisher>(
-      *publisher_, [video = video_.get()] { return video->dropped(); });
-  // Stored calibrations replace the profiles' nominal deg/px (after the simulation took its
-  // truth from the nominal one: the simulated lens does not change).
-  calibrations_ =
-      std::make_unique<CalibrationStore>(std::filesystem::path(config_.state_dir) / "calibration");
-  for (LensProfile& lens : config_.lenses) {
-    std::string why;
-    if (const auto stored = calibrations_->Load(lens.name, &why)) {
-      lens.ApplyCalibration(*stored);
-      spdlog::info("lens {}: stored calibration {:.5f} / {:.5f} deg/px", lens.name,
-                   stored->pan_deg_per_px, stored->tilt_deg_per_px);
-    } else if (!why.empty()) {
-      spdlog::warn("lens {}: stored calibration ignored: {}", lens.name, why);
-    }
-  }
-  PhotoStore* store = photo_store_.get();
-  state_ = std::make_unique<StateKeeper>(
-      config_, *publisher_, simulated_, [store] { return store->count(); }, calibrations_.get());
-  state_republisher_ = std::make_unique<StateRepublisher>(*state_);
+}
 
+void Agent::StartModes(const std::optional<ResumeRecord>& resumed, const PipelineOptions& pipeline,
+                       const PredictiveOptions& predictive) {
+  const double fps = config_.camera.fps;
   ModeRunnerOptions modes;
   modes.start_mode = options_.start_mode;
   modes.default_deadline = {config_.search.swing_frames, config_.search.swing_seconds};
@@ -319,6 +368,7 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   modes.actuation_delay_frames = pipeline.actuation_delay_frames;
   modes.frame_period_s = 1.0 / fps;
   modes.recordings_dir = (std::filesystem::path(config_.photos.dir) / "free-swing").string();
+  modes.worker = worker_;
   resume_recorder_ = std::make_unique<ResumeRecorder>(
       *resume_store_, *state_, resumed.value_or(ResumeRecord{}), config_.lens);
   // A resumed fixation first finds its stored view again; any other stored mode is taken up
@@ -331,19 +381,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   modes_ = std::make_unique<ModeRunner>(state_->settings(), modes, *resume_recorder_);
   if (resume_view) modes_->RequestResume(resumed->reference_frame, resumed->slice);
   if (resumed && !resume_view) state_->OnResumeEnded(true);
+}
 
-  std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};
-  if (options_.keep_telemetry) observers.push_back(&telemetry_);
-  // The devices' health, kept by the pipeline, goes to systemctl status and the AgentState.
-  pipeline.on_health = [notifier = notifier_.get(),
-                        state = state_.get()](const DevicesHealth& health) {
-    notifier->Status(StatusLine(health));
-    state->OnDeviceHealth(health);
-  };
-  pipeline_ = std::make_unique<Pipeline>(*source_, *servos_, *modes_, std::move(observers),
-                                         std::move(pipeline));
-  state_->OnDeviceHealth(pipeline_->health());  // as it is at start
-
+void Agent::StartCommandServer(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget) {
   Pipeline* running = pipeline_.get();
   executor_ = std::make_unique<CommandExecutor>(CommandTargets{
       .state = *state_,
@@ -352,15 +392,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       .video = *video_,
       .apply_camera =
           [running](const CameraConfig& camera) {
-            running->RequestCameraChange([camera](FrameSource& source) {
-              std::string why;
-              if (camera.gain_db && !source.SetGain(*camera.gain_db, &why)) {
-                spdlog::error("camera gain not set: {}", why);
-              }
-              if (camera.exposure_us && !source.SetExposure(*camera.exposure_us, &why)) {
-                spdlog::error("camera exposure not set: {}", why);
-              }
-            });
+            running->RequestCameraChange(
+                [camera](FrameSource& source) { ApplyCameraSettings(camera, source); });
           },
       .free_swing_recording_possible = true,
   });

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "agent/capture/frame_source.hpp"
@@ -20,12 +21,15 @@
 #include "agent/pipeline/pipeline.hpp"
 #include "agent/pipeline/telemetry_recorder.hpp"
 #include "agent/resume/recording_control.hpp"
+#include "agent/resume/resume_record.hpp"
 #include "agent/resume/resume_recorder.hpp"
 #include "agent/resume/resume_store.hpp"
 #include "agent/server/command_server.hpp"
+#include "agent/server/curve_server_keys.hpp"
 #include "agent/server/stream_publisher.hpp"
 #include "agent/service/systemd_notifier.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
+#include "agent/worker/work_queue.hpp"
 #include "common/sim/simulated_platform.hpp"
 
 namespace kapfix::agent {
@@ -115,6 +119,17 @@ class Agent {
   void FlushResumeRecord() { resume_recorder_->Flush(); }
 
  private:
+  // The parts of the wiring, in the order Agent::Agent calls them.
+  // Camera and servos (real or simulated), opened or left for the pipeline to retry; the
+  // pipeline's options for them, and the predictive controller's options in `predictive`.
+  PipelineOptions OpenDevices(PredictiveOptions* predictive);
+  void StartPublisher(const std::optional<CurveServerKeys>& curve, std::size_t budget);
+  void StartPhotos();
+  // The modes, as the previous run left them when `resumed`.
+  void StartModes(const std::optional<ResumeRecord>& resumed, const PipelineOptions& pipeline,
+                  const PredictiveOptions& predictive);
+  void StartCommandServer(const std::optional<CurveServerKeys>& curve, std::size_t budget);
+
   // The configuration as started: wiring reads its devices, link and folders. The settings
   // are StateKeeper's (state_->settings()); nothing reads them here after construction.
   AgentConfig config_;
@@ -134,6 +149,9 @@ class Agent {
   std::unique_ptr<TelemetryPublisher> telemetry_publisher_;
   TelemetryRecorder telemetry_;
   std::unique_ptr<CalibrationStore> calibrations_;
+  // Disk writes off the control thread (calibrations, free-swing recordings); after what its
+  // jobs use, before the state and the modes that post to it.
+  std::shared_ptr<WorkQueue> worker_;
   std::unique_ptr<StateKeeper> state_;
   std::unique_ptr<StateRepublisher> state_republisher_;
   std::unique_ptr<ResumeStore> resume_store_;

@@ -167,11 +167,21 @@ void StateKeeper::OnCalibrationReport(const kapfix::v1::CalibrationReport& repor
     }
   }
   if (report.finished() && applied && calibrations_) {
-    try {
-      calibrations_->Save(report.lens_profile(), *applied, report);
-      spdlog::info("calibration of lens {} stored", report.lens_profile());
-    } catch (const std::exception& e) {
-      spdlog::error("calibration of lens {} not stored: {}", report.lens_profile(), e.what());
+    auto save = [store = calibrations_, report, calibration = *applied]() -> WorkQueue::Result {
+      try {
+        store->Save(report.lens_profile(), calibration, report);
+        spdlog::info("calibration of lens {} stored", report.lens_profile());
+      } catch (const std::exception& e) {
+        spdlog::error("calibration of lens {} not stored: {}", report.lens_profile(), e.what());
+      }
+      return nullptr;
+    };
+    std::string refused;  // logged by the worker; the lens keeps the calibration until a restart
+    if (!calibration_writer_) {
+      save();
+    } else if (!calibration_writer_->Post("calibration of lens " + report.lens_profile(),
+                                          std::move(save), &refused)) {
+      spdlog::error("calibration of lens {} not stored", report.lens_profile());
     }
   }
   sink_.Publish(report);

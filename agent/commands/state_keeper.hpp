@@ -10,6 +10,7 @@
 #include "agent/modes/mode_events.hpp"
 #include "agent/pipeline/device_health.hpp"
 #include "agent/server/stream_sink.hpp"
+#include "agent/worker/work_queue.hpp"
 #include "kapfix/v1/state.pb.h"
 
 namespace kapfix::agent {
@@ -31,6 +32,10 @@ class StateKeeper : public ModeEvents {
   StateKeeper(AgentConfig settings, StreamSink& sink, bool simulated,
               std::function<std::uint64_t()> photos_stored,
               const CalibrationStore* calibrations = nullptr);
+
+  // Calibrations are stored by `worker` (a disk write with fsync), not on the control thread
+  // that reports them; without one, within OnCalibrationReport. `worker` must outlive this.
+  void StoreCalibrationsOn(WorkQueue* worker) { calibration_writer_ = worker; }
 
   // The settings now: an immutable snapshot that stays as it is while the keeper moves on.
   std::shared_ptr<const AgentConfig> settings() const;
@@ -71,6 +76,7 @@ class StateKeeper : public ModeEvents {
   bool simulated_;
   std::function<std::uint64_t()> photos_stored_;
   const CalibrationStore* calibrations_;
+  WorkQueue* calibration_writer_ = nullptr;
   AgentMode mode_ = AgentMode::kIdle;
   int slice_ = 0;
   std::optional<kapfix::v1::SliceReport> last_slice_report_;

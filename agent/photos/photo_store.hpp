@@ -20,6 +20,9 @@ namespace kapfix::agent {
 class PhotoStore {
  public:
   explicit PhotoStore(std::filesystem::path dir);
+  virtual ~PhotoStore() = default;
+  PhotoStore(const PhotoStore&) = delete;
+  PhotoStore& operator=(const PhotoStore&) = delete;
 
   // Whether a photo of about `bytes` can be stored now: the folder exists (it is created) and
   // is writable, and the disk has room for twice that. The reason names the folder.
@@ -38,7 +41,9 @@ class PhotoStore {
   // Stores a file another camera made (PhotoTrigger): `bytes` as they are, with `metadata`,
   // whose width, height and format the caller fills; the file name as in Save. The same
   // guarantees as Save: written atomically, never a file without its sidecar.
-  kapfix::v1::PhotoMetadata SaveFile(const std::string& bytes, kapfix::v1::PhotoMetadata metadata);
+  // Virtual: the seam of a slow disk in tests (a store whose fsync takes seconds).
+  virtual kapfix::v1::PhotoMetadata SaveFile(const std::string& bytes,
+                                             kapfix::v1::PhotoMetadata metadata);
   // `image` (BGR) as the JPEG the store keeps; throws std::runtime_error when it cannot.
   static std::string EncodeJpeg(const cv::Mat& image);
 

@@ -12,7 +12,7 @@
 
 #include "agent/capture/frame_source.hpp"
 #include "agent/pipeline/device_health.hpp"
-#include "agent/pipeline/frame_processor.hpp"
+#include "agent/modes/frame_processor.hpp"
 #include "agent/pipeline/latest_frame_slot.hpp"
 #include "agent/pipeline/servo_commander.hpp"
 #include "agent/pipeline/step_observer.hpp"

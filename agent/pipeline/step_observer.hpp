@@ -1,7 +1,7 @@
 #pragma once
 
 #include "agent/capture/frame_source.hpp"
-#include "agent/pipeline/frame_processor.hpp"
+#include "agent/modes/frame_processor.hpp"
 #include "agent/pipeline/telemetry_record.hpp"
 
 namespace kapfix::agent {

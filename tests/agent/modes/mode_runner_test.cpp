@@ -201,6 +201,8 @@ TEST(ModeRunnerTest, FreeSwingRecordingWritesOneCsvRowPerFrameAfterTheFirst) {
   ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle, temp.path().string()), events);
   runner.RequestMode(AgentMode::kRecordFreeSwing, SwingDeadline{8, 100.0});
   for (const CapturedFrame& frame : Swing(8)) Feed(runner, frame);
+  EXPECT_EQ(runner.mode(), AgentMode::kIdle);  // at once: the file is the worker's to write
+  runner.FlushWork();
   ASSERT_EQ(events.recordings.size(), 1u);
   EXPECT_EQ(events.recordings[0].second, "");
   const std::filesystem::path path = events.recordings[0].first;

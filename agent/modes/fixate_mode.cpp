@@ -1,0 +1,72 @@
+#include "agent/modes/fixate_mode.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "agent/modes/run_options.hpp"
+
+namespace kapfix::agent {
+
+void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) {
+  reference_frame_ = frame.image.clone();
+  reference_index_ = frame.index;
+  Build();
+  if (kind_ == AgentMode::kFixate) context_.events().OnReferenceTaken(reference_frame_, current);
+}
+
+void FixateMode::TakeUp(const HeldView& view) {
+  reference_frame_ = view.reference_frame;
+  reference_index_ = view.reference_index;
+  Build();
+  if (view.seek_from) loop_->SeekFrom(*view.seek_from);
+}
+
+void FixateMode::Build() {
+  loop_ = context_.MakeLoop(kind_ == AgentMode::kFollow ? FixationOptions::Reference::kPrevious
+                                                        : FixationOptions::Reference::kStored);
+  // The view to hold is the one the operator fixated, not the one in front of the camera
+  // when a setting changed.
+  if (!reference_frame_.empty()) loop_->SetReference(reference_frame_);
+}
+
+void FixateMode::OnSettings(bool rebuild) {
+  if (rebuild) {
+    Build();
+  } else {
+    loop_->SetGains(MakeGains(context_.settings().gains));  // bumpless
+  }
+}
+
+std::optional<HeldView> FixateMode::HeldFixation() const {
+  if (kind_ != AgentMode::kFixate || reference_frame_.empty()) return std::nullopt;
+  return HeldView{.reference_frame = reference_frame_,
+                  .reference_index = reference_index_,
+                  .slice = context_.slice(),
+                  .seek_from = std::nullopt};
+}
+
+FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets& current,
+                                 double dt_s) {
+  FrameOutcome outcome;
+  outcome.step = loop_->Process(frame.image, current, dt_s);
+  // The operator must hear of a lock the agent does not trust (issue 9), once per change;
+  // telemetry carries it on every frame as lock_lost.
+  if (outcome.step.lock_lost != lock_lost_) {
+    lock_lost_ = outcome.step.lock_lost;
+    if (lock_lost_) {
+      spdlog::warn(
+          "frame {}: match not trusted (confidence {:.2f}, ambiguous or poor): re-acquiring the "
+          "stored reference; the servos follow the forecast swing, then hold",
+          frame.index, outcome.step.match.confidence);
+    } else {
+      spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
+    }
+  }
+  outcome.mode = kind_;
+  outcome.slice = context_.slice();
+  outcome.slice_count = context_.settings().search.slices;
+  outcome.patch = loop_->patch();
+  if (kind_ == AgentMode::kFixate) outcome.reference_frame = reference_index_;
+  return outcome;
+}
+
+}  // namespace kapfix::agent

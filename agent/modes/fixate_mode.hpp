@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+
+#include "agent/modes/mode.hpp"
+#include "agent/modes/mode_context.hpp"
+#include "common/fixation/fixation_loop.hpp"
+
+namespace kapfix::agent {
+
+// Fixate (SPEC §4): every frame is matched against the reference taken when fixate began, and
+// the fixation loop turns the displacement into servo targets. Owns the loop, the reference
+// and the lock state; new settings rebuild the loop on the same reference (new gains only:
+// the controller keeps its state).
+class FixateMode : public Mode {
+ public:
+  explicit FixateMode(ModeContext& context) : FixateMode(context, AgentMode::kFixate) {}
+
+  AgentMode kind() const override { return kind_; }
+  // The reference is `frame` (ModeEvents::OnReferenceTaken tells).
+  void Enter(const CapturedFrame& frame, const ServoTargets& current) override;
+  // Instead of Enter: the reference is a view held earlier, not the frame in front of the
+  // camera (no OnReferenceTaken: the view is not new). Throws like Enter.
+  void TakeUp(const HeldView& view);
+  FrameOutcome Process(const CapturedFrame& frame, const ServoTargets& current,
+                       double dt_s) override;
+  void OnSettings(bool rebuild) override;
+  std::optional<HeldView> HeldFixation() const override;
+
+ protected:
+  // Follow: the same loop against the previous frame.
+  FixateMode(ModeContext& context, AgentMode kind) : context_(context), kind_(kind) {}
+
+ private:
+  void Build();
+
+  ModeContext& context_;
+  const AgentMode kind_;
+  std::unique_ptr<FixationLoop> loop_;
+  bool lock_lost_ = false;             // the last frame's lock state, to log its changes
+  cv::Mat reference_frame_;            // the frame the reference was taken from
+  std::uint64_t reference_index_ = 0;  // its index
+};
+
+}  // namespace kapfix::agent
