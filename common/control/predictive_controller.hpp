@@ -21,8 +21,8 @@ struct PredictiveOptions {
   // calibration the controller acts on moves towards it every adapt_every_frames by at most
   // the factor adapt_max_step (bounded rate of change). false: the estimate is only reported.
   bool adapt_calibration = true;
-  int adapt_every_frames = 10;  // [frames]
-  double adapt_max_step = 1.1;  // [1] > 1
+  int adapt_every_frames = 5;   // [frames]
+  double adapt_max_step = 2.0;  // [1] > 1
   DegPerPxEstimatorOptions estimator;
 
   bool IsValid(std::string* error) const;
