@@ -10,7 +10,7 @@ struct DegPerPxEstimatorOptions {
   // [1] AR order of the swing model: 2 is a damped pendulum; more absorbs coloured
   // turbulence on top of it, which an AR(2) would partly blame on the servo.
   int order = 2;
-  int min_samples = 60;  // [frames] fitted rows before the estimate may be trusted
+  int min_samples = 12;  // [frames] fitted rows before the estimate may be trusted
   int refit_every = 5;   // [frames] between fits
   // [1] the estimate is trusted once its relative standard deviation is below this.
   double max_relative_sigma = 0.035;

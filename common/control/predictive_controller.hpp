@@ -26,8 +26,8 @@ struct PredictiveOptions {
   // calibration the controller acts on moves towards it every adapt_every_frames by at most
   // the factor adapt_max_step (bounded rate of change). false: the estimate is only reported.
   bool adapt_calibration = true;
-  int adapt_every_frames = 10;  // [frames]
-  double adapt_max_step = 1.1;  // [1] > 1
+  int adapt_every_frames = 5;   // [frames]
+  double adapt_max_step = 2.0;  // [1] > 1
   DegPerPxEstimatorOptions estimator;
 
   bool IsValid(std::string* error) const;
@@ -62,6 +62,8 @@ class PredictiveController final : public Controller {
   void SetCalibration(const LensCalibration& calibration) override;
   // Keeps the swing models, the online calibration and the hand-over state.
   void SetGains(const ControllerGains& gains) override;
+  // Per axis: the online deg/px estimate, its relative σ, trust, and the forecast weight.
+  std::optional<ControlEstimate> estimate() const override;
   // The calibration the controller acts on now (the stored one, moved by the online estimate).
   const LensCalibration& calibration() const { return calibration_; }
 

@@ -11,11 +11,51 @@ namespace {
 
 constexpr int kMaxOrder = 32;
 constexpr double kOutlierSigmas = 4.0;  // AR residuals beyond this many σ (from MAD) dropped
+// [1] total least squares only while the model's weakest direction's singular value is this
+// many times the noise floor's (see FitRows): below, the swing is not clear of the noise.
+constexpr double kTlsSeparation = 2.0;
 
 double Median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   return *mid;
+}
+
+// lags: one row per fitted sample, [x_t, x_{t−1}, …, x_{t−p}]. Returns a_1…a_p, c.
+std::optional<std::vector<double>> FitAutoregression(const Eigen::MatrixXd& lags) {
+  const auto p = static_cast<int>(lags.cols()) - 1;
+  const Eigen::Index rows = lags.rows();
+  const Eigen::RowVectorXd mean = lags.colwise().mean();
+  const Eigen::MatrixXd centred = lags.rowwise() - mean;
+  // Total least squares (the offset c exact, eliminated by centring): every column carries
+  // the same white measurement noise, and TLS, unlike least squares, does not shrink the
+  // coefficients for it — LS fits a 40-frame swing with pole radius 0.9975 under σ = 2 px as
+  // ~0.9 with a period anywhere from 39 to 160 frames. TLS needs the swing to stand clear
+  // of the noise: the p-th singular value (the weakest direction the model explains) well
+  // above the (p+1)-th (the noise floor). Otherwise — white jitter around an offset, a
+  // swing buried in noise — least squares, which fits that as the offset.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred, Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  Eigen::VectorXd a(p);
+  bool solved = false;
+  if (sv(p) > 0 && sv(p - 1) >= kTlsSeparation * sv(p)) {
+    const Eigen::VectorXd v = svd.matrixV().col(p);
+    if (std::abs(v(0)) > 1e-9) {
+      a = -v.tail(p) / v(0);
+      solved = a.allFinite();
+    }
+  }
+  if (!solved) {
+    // Below full rank (a constant series, say) there is no unique fit, and no swing to model.
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(centred.rightCols(p));
+    qr.setThreshold(1e-9);
+    if (rows < p + 1 || qr.rank() < p) return std::nullopt;
+    a = qr.solve(centred.col(0));
+    if (!a.allFinite()) return std::nullopt;
+  }
+  std::vector<double> w(a.data(), a.data() + p);
+  w.push_back(mean(0) - mean.tail(p).dot(a));  // c
+  return w;
 }
 
 }  // namespace
@@ -65,6 +105,7 @@ SwingPredictor::SwingPredictor(SwingPredictorOptions options) : options_(options
 
 void SwingPredictor::Clear() {
   history_.clear();
+  spans_.clear();
   coefficients_.clear();
   state_.clear();
   since_restart_ = 0;
@@ -157,7 +198,11 @@ void SwingPredictor::Append(double x, bool imputed) {
   }
 
   history_.push_back(x);
-  while (static_cast<int>(history_.size()) > options_.window_frames) history_.pop_front();
+  spans_.push_back(std::min(options_.smoothing_frames, since_restart_));
+  while (static_cast<int>(history_.size()) > options_.window_frames) {
+    history_.pop_front();
+    spans_.pop_front();
+  }
   // While coasting the coefficients stay: imputed samples are the model's own.
   if (!imputed || coefficients_.empty()) Refit();
   FitState();
@@ -172,7 +217,6 @@ void SwingPredictor::Score() {
   const int lead = options_.lead_frames;
   double sum[3] = {0, 0, 0};
   int count[3] = {0, 0, 0};
-  std::vector<double> state(static_cast<std::size_t>(p));
   for (int t = std::max(0, n - options_.skill_frames); t < n; ++t) {
     const int known = t - lead;  // the newest sample known when forecasting t
     if (known < 0) continue;
@@ -187,8 +231,10 @@ void SwingPredictor::Score() {
       add(Forecaster::kLinear, history_[known] + lead * (history_[known] - history_[known - 1]));
     }
     if (!coefficients_.empty() && known >= p - 1) {
-      for (int i = 0; i < p; ++i) state[i] = history_[known - i];
-      add(Forecaster::kModel, ModelForecast(state, lead));
+      // The forecast exactly as Forecast() would have made it at `known`: from the state
+      // fitted through the model to the samples the state fit spanned then.
+      const std::vector<double> state = StateAt(known, spans_[known]);
+      if (!state.empty()) add(Forecaster::kModel, ModelForecast(state, lead));
     }
   }
   chosen_ = Forecaster::kPersistence;
@@ -221,64 +267,46 @@ bool SwingPredictor::Refit() {
   const int rows = n - p;
   coefficients_.clear();
   if (rows < 2 * (p + 1)) return false;
-  Eigen::MatrixXd a(rows, p + 1);
-  Eigen::VectorXd b(rows);
+  Eigen::MatrixXd lags(rows, p + 1);
   for (int r = 0; r < rows; ++r) {
-    const int t = r + p;
-    for (int i = 0; i < p; ++i) a(r, i) = history_[t - 1 - i];
-    a(r, p) = 1.0;
-    b(r) = history_[t];
+    for (int i = 0; i <= p; ++i) lags(r, i) = history_[r + p - i];
   }
-  // Below full rank (a constant series, say) there is no unique fit, and no swing to model.
-  const auto solve = [p](const Eigen::MatrixXd& m, const Eigen::VectorXd& v, Eigen::VectorXd* out) {
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
-    qr.setThreshold(1e-9);
-    if (qr.rank() < p + 1) return false;
-    *out = qr.solve(v);
-    return out->allFinite();
-  };
-  Eigen::VectorXd w;
-  if (!solve(a, b, &w)) return false;
-  // One robust pass: refit without the residuals beyond kOutlierSigmas (a gust's innovation,
-  // a bad match).
-  const Eigen::VectorXd residual = b - a * w;
-  std::vector<double> abs_res(residual.size());
-  for (int r = 0; r < rows; ++r) abs_res[r] = std::abs(residual(r));
+  std::optional<std::vector<double>> w = FitAutoregression(lags);
+  if (!w) return false;
+  // One robust pass: refit without the equation residuals beyond kOutlierSigmas (a gust's
+  // innovation, a bad match).
+  std::vector<double> abs_res(static_cast<std::size_t>(rows));
+  for (int r = 0; r < rows; ++r) {
+    double e = lags(r, 0) - (*w)[p];
+    for (int i = 0; i < p; ++i) e -= (*w)[i] * lags(r, i + 1);
+    abs_res[r] = std::abs(e);
+  }
   const double sigma = 1.4826 * Median(abs_res);
   if (sigma > 0) {
-    std::vector<int> keep;
+    std::vector<Eigen::Index> keep;
     for (int r = 0; r < rows; ++r) {
       if (abs_res[r] <= kOutlierSigmas * sigma) keep.push_back(r);
     }
     if (static_cast<int>(keep.size()) < rows && static_cast<int>(keep.size()) >= 2 * (p + 1)) {
-      Eigen::MatrixXd a2(static_cast<Eigen::Index>(keep.size()), p + 1);
-      Eigen::VectorXd b2(static_cast<Eigen::Index>(keep.size()));
-      for (std::size_t k = 0; k < keep.size(); ++k) {
-        a2.row(static_cast<Eigen::Index>(k)) = a.row(keep[k]);
-        b2(static_cast<Eigen::Index>(k)) = b(keep[k]);
-      }
-      Eigen::VectorXd w2;
-      if (solve(a2, b2, &w2)) w = w2;
+      if (auto w2 = FitAutoregression(lags(keep, Eigen::all))) w = std::move(w2);
     }
   }
   // Reject fits that would grow without bound: the companion matrix's spectral radius.
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(p, p);
-  for (int i = 0; i < p; ++i) companion(0, i) = w(i);
+  for (int i = 0; i < p; ++i) companion(0, i) = (*w)[i];
   for (int i = 1; i < p; ++i) companion(i, i - 1) = 1.0;
   const double radius = companion.eigenvalues().cwiseAbs().maxCoeff();
   if (!(radius <= options_.max_spectral_radius)) return false;
-  coefficients_.assign(w.data(), w.data() + w.size());
+  coefficients_ = std::move(*w);
   return true;
 }
 
-void SwingPredictor::FitState() {
+std::vector<double> SwingPredictor::StateAt(int newest, int span) const {
   const int p = options_.order;
-  const int n = static_cast<int>(history_.size());
-  state_.clear();
-  if (coefficients_.empty() || n < p) return;
-  const int k = std::clamp(std::min(options_.smoothing_frames, since_restart_), p, n);
-  // Window y_0 … y_{k−1} (the last k samples). Its first p values z are the unknowns; the
-  // model makes every later value affine in them: y_m = B_m · z + P_m.
+  if (coefficients_.empty() || newest + 1 < p) return {};
+  const int k = std::clamp(span, p, newest + 1);
+  // Window y_0 … y_{k−1} (the k samples up to `newest`). Its first p values z are the
+  // unknowns; the model makes every later value affine in them: y_m = B_m · z + P_m.
   Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(k, p);
   Eigen::VectorXd forced = Eigen::VectorXd::Zero(k);
   for (int m = 0; m < k; ++m) {
@@ -293,11 +321,17 @@ void SwingPredictor::FitState() {
     }
   }
   Eigen::VectorXd y(k);
-  for (int m = 0; m < k; ++m) y(m) = history_[n - k + m] - forced(m);
+  for (int m = 0; m < k; ++m) y(m) = history_[newest + 1 - k + m] - forced(m);
   const Eigen::VectorXd z = basis.colPivHouseholderQr().solve(y);
   const Eigen::VectorXd fitted = basis * z + forced;
-  if (!fitted.allFinite()) return;
-  for (int i = 0; i < p; ++i) state_.push_back(fitted(k - 1 - i));
+  if (!fitted.allFinite()) return {};
+  std::vector<double> state;
+  for (int i = 0; i < p; ++i) state.push_back(fitted(k - 1 - i));
+  return state;
+}
+
+void SwingPredictor::FitState() {
+  state_ = StateAt(samples() - 1, spans_.empty() ? 0 : spans_.back());
 }
 
 }  // namespace kapfix

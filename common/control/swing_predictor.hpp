@@ -46,19 +46,23 @@ struct SwingPredictorOptions {
 //  - linear: the last step extrapolated (x_n + lead·(x_n − x_{n−1})), which carries the loop
 //    while the model has too few samples; until it has been scored it is preferred to
 //    persistence after a large step (a swinging platform moves smoothly);
-//  - model: x_n = a_1·x_{n−1} + … + a_p·x_{n−p} + c, least squares over the window, refitted
-//    after every sample with one robust pass (residuals beyond 4σ of their MAD dropped, so a
-//    gust's single innovation does not bend the fit). A damped sinusoid around an offset
-//    satisfies AR(2) exactly, whatever its amplitude and phase, and a gust of the same period
-//    breaks the recurrence for one sample only; white jitter around an offset fits as that
-//    offset. The forecast starts from the state (the last p values) fitted through the model
-//    to the last smoothing_frames samples, which averages the measurement noise the
-//    recurrence would otherwise amplify (×3.5 for a 40-frame period two frames ahead); a jump
-//    restarts that fit from the newest p samples.
+//  - model: x_n = a_1·x_{n−1} + … + a_p·x_{n−p} + c, fitted over the window by total least
+//    squares (unbiased under white measurement noise, where least squares shrinks the
+//    poles: a 40-frame swing of pole radius 0.9975 under σ = 2 px came out ~0.9 with periods
+//    wandering from 39 to hundreds of frames) — least squares only where no swing stands
+//    clear of the noise — refitted after every sample with one robust pass (residuals beyond
+//    4σ of their MAD dropped, so a gust's single innovation does not bend the fit). A damped
+//    sinusoid around an offset satisfies AR(2) exactly, whatever its amplitude and phase,
+//    and a gust of the same period breaks the recurrence for one sample only; white jitter
+//    around an offset fits as that offset. The forecast starts from the state (the last p
+//    values) fitted through the model to the last smoothing_frames samples, which averages
+//    the measurement noise the recurrence would otherwise amplify (×3.5 for a 40-frame period
+//    two frames ahead); a jump restarts that fit from the newest p samples.
 // After every sample each forecaster is scored on the last skill_frames samples, forecasting
-// each from what was known lead_frames before it (the model with its current coefficients
-// and raw samples). Predict() returns the best one's forecast, or nothing — the caller falls
-// back to plain P — while persistence is best.
+// each from what was known lead_frames before it exactly as Forecast() would have then (the
+// model with its current coefficients, from the state fitted over the span the state fit had
+// then: the forecast it acts on, not one from raw samples). Predict() returns the best one's
+// forecast, or nothing — the caller falls back to plain P — while persistence is best.
 class SwingPredictor {
  public:
   enum class Forecaster { kPersistence, kLinear, kModel };
@@ -93,12 +97,16 @@ class SwingPredictor {
   void Append(double x, bool imputed);
   bool Refit();
   void FitState();
+  // The last p values (newest first) fitted through the model to the `span` samples up to
+  // index `newest`; empty without a model or when the fit fails.
+  std::vector<double> StateAt(int newest, int span) const;
   void Score();
   double OneStep(const std::vector<double>& state) const;  // state newest first
   double ModelForecast(std::vector<double> state, int frames) const;
 
   SwingPredictorOptions options_;
   std::deque<double> history_;        // oldest first, at most window_frames
+  std::deque<int> spans_;             // per sample: [samples] its state fit's span
   std::vector<double> coefficients_;  // a_1…a_p, c; empty when there is no model
   std::vector<double> state_;         // fitted last p values, newest first
   int since_restart_ = 0;             // samples since the last jump (bounds the state fit)

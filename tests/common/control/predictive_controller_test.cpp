@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/control/proportional_controller.hpp"
+#include "common/sim/sim_random.hpp"
 
 namespace kapfix {
 namespace {
@@ -152,12 +153,97 @@ TEST(PredictiveControllerTest, HandsOverToPWhenTheViewShowsItsForecastsFail) {
   EXPECT_FALSE(controller.predicting_pan());
 }
 
+TEST(PredictiveControllerTest, HandsOverGraduallyAndComesBackOnceItsForecastsWorkAgain) {
+  // 200 frames whose commands do not act (as above), then a servo that works: the forecast
+  // weight must fall through intermediate values (a blend, not a switch), reach P, and come
+  // back to the forecast — again through intermediate values — once it forecasts well.
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  bool blended_down = false, blended_up = false;
+  double lowest = 1;
+  for (int t = 0; t < 200; ++t) {
+    controller.Update(Measured(-NumericLoop::Swing(t)), {});
+    const double w = controller.pan_forecast_weight();
+    blended_down = blended_down || (w > 0 && w < 1);
+    lowest = std::min(lowest, w);
+  }
+  std::vector<double> commands;
+  for (int t = 200; t < 600; ++t) {
+    const double angle = commands.size() >= 2 ? commands[commands.size() - 2] : 0.0;
+    const double offset = NumericLoop::Swing(t) + angle * 10;
+    commands.push_back(controller.Update(Measured(-offset), {angle, 0}).pan_deg);
+    const double w = controller.pan_forecast_weight();
+    blended_up = blended_up || (w > 0 && w < 1);
+  }
+  EXPECT_TRUE(blended_down);
+  EXPECT_DOUBLE_EQ(lowest, 0.0);
+  EXPECT_TRUE(blended_up);
+  EXPECT_DOUBLE_EQ(controller.pan_forecast_weight(), 1.0);
+  EXPECT_TRUE(controller.predicting_pan());
+}
+
 TEST(PredictiveControllerTest, KeepsItsForecastWhileTheViewShowsItWorks) {
   PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
   NumericLoop loop(10.0, 2);
   loop.Run(controller, 300, 0);
   EXPECT_DOUBLE_EQ(controller.pan_forecast_weight(), 1.0);
   EXPECT_TRUE(controller.predicting_pan());
+}
+
+// The swing of NumericLoop plus a step gust every 25 frames (a push of up to ±20 px that
+// stays), which the servo must follow and a damped pendulum cannot explain: the excitation
+// the online calibration learns from.
+double GustySwing(int t) {
+  double gusts = 0;
+  for (int k = 25; k <= t; k += 25) gusts += 20 * SimGaussian(11, 0, k / 25);
+  return NumericLoop::Swing(t) + gusts;
+}
+
+// Flies `frames` frames of GustySwing against a lens with 10 px/deg, the controller's
+// calibration `error` × the true 0.1 deg/px, with the servo showing in the view 2 frames
+// after the command; returns the calibration the controller acts on at the end ÷ the truth.
+double CalibrationRatioAfter(int frames, double error) {
+  PredictiveController controller(NoDeadBand(), {0.1 * error, 0.1 * error}, Lead(2));
+  std::vector<double> commands;
+  for (int t = 0; t < frames; ++t) {
+    const double angle = t >= 2 ? commands[static_cast<std::size_t>(t - 2)] : 0.0;
+    const double offset = GustySwing(t) + angle * 10;
+    commands.push_back(controller.Update(Measured(-offset), {angle, 0}).pan_deg);
+  }
+  return controller.calibration().pan_deg_per_px / 0.1;
+}
+
+TEST(PredictiveControllerCalibrationTest, AWrongCalibrationIsCorrectedWithinThreeSeconds) {
+  // 75 frames (3 s at 25 frames/s): trusted after ~20 fitted frames, then acted on at once
+  // (a bounded step of at most 2× per 5 frames) rather than 10 % per 10 frames.
+  for (const double error : {0.6, 1.6}) {
+    EXPECT_NEAR(CalibrationRatioAfter(75, error), 1.0, 0.1) << "calibration x" << error;
+  }
+}
+
+TEST(PredictiveControllerEstimateTest, ReportsTheStoredCalibrationUntrustedBeforeAnyFit) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.2}, Lead(2));
+  const std::optional<ControlEstimate> estimate = controller.estimate();
+  ASSERT_TRUE(estimate.has_value());
+  EXPECT_DOUBLE_EQ(estimate->pan.deg_per_px, 0.1);
+  EXPECT_DOUBLE_EQ(estimate->tilt.deg_per_px, 0.2);
+  EXPECT_FALSE(estimate->pan.trusted);
+  EXPECT_FALSE(std::isfinite(estimate->pan.relative_sigma));
+}
+
+TEST(PredictiveControllerEstimateTest, ReportsTheForecastWeightItActsOn) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  for (int t = 0; t < 200; ++t) controller.Update(Measured(-NumericLoop::Swing(t)), {});
+  const std::optional<ControlEstimate> estimate = controller.estimate();
+  ASSERT_TRUE(estimate.has_value());
+  EXPECT_DOUBLE_EQ(estimate->pan.forecast_weight, controller.pan_forecast_weight());
+  EXPECT_DOUBLE_EQ(estimate->pan.forecast_weight, 0.0);  // handed over (see above)
+  EXPECT_DOUBLE_EQ(estimate->forecast_weight(),
+                   0.5 * (estimate->pan.forecast_weight + estimate->tilt.forecast_weight));
+}
+
+TEST(PredictiveControllerEstimateTest, PlainPHasNoEstimate) {
+  const ProportionalController controller(NoDeadBand(), {0.1, 0.1});
+  EXPECT_FALSE(controller.estimate().has_value());
 }
 
 }  // namespace

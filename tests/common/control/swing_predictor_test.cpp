@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -54,6 +55,69 @@ TEST(SwingPredictorTest, PredictsANoisySwingWithinAFewTenthsOfAPixel) {
   // Persistence would be off by up to 2 · 15.7 px; the raw AR(2) recurrence amplifies the
   // 0.2 px noise ×3.5, to 0.7 px. The state fit averages it.
   EXPECT_LT(ForecastRms(predictor, noisy, Swing, 300, 40), 0.4);
+}
+
+// The AR(2) model's poles: radius and period [frames] of x_t = a1·x_{t−1} + a2·x_{t−2} + c.
+struct Poles {
+  double radius, period;
+};
+Poles PolesOf(const std::vector<double>& coefficients) {
+  const double a1 = coefficients.at(0), a2 = coefficients.at(1);
+  if (a1 * a1 + 4 * a2 >= 0) return {std::nan(""), std::nan("")};  // real poles: no swing
+  const double radius = std::sqrt(-a2);
+  return {radius, 2 * std::numbers::pi / std::acos(a1 / (2 * radius))};
+}
+
+double MedianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? std::nan("") : v[v.size() / 2];
+}
+
+TEST(SwingPredictorTest, FitsALightlyDampedSwingUnbiasedUnderTwoPixelsOfNoise) {
+  // Pole radius 0.9975, period 40 frames, σ = 2 px of white measurement noise. Least
+  // squares shrinks the poles towards the origin (radius ~0.89, periods wandering from ~40
+  // to several hundred frames); the model must not.
+  SwingPredictor predictor;  // window 80 frames
+  std::vector<double> radii, periods;
+  double worst_radius = 0, worst_period = 0;
+  for (int t = 0; t < 300; ++t) {  // amplitude 100 → 47 px
+    predictor.Add(20 + 100 * std::pow(0.9975, t) * std::sin(kOmega * t) + 2 * SimGaussian(7, 0, t));
+    if (t < 80) continue;
+    ASSERT_TRUE(predictor.has_model()) << "sample " << t;
+    const Poles poles = PolesOf(predictor.coefficients());
+    ASSERT_TRUE(std::isfinite(poles.radius)) << "no oscillating poles at sample " << t;
+    radii.push_back(poles.radius);
+    periods.push_back(poles.period);
+    worst_radius = std::max(worst_radius, std::abs(poles.radius - 0.9975));
+    worst_period = std::max(worst_period, std::abs(poles.period - 40));
+  }
+  EXPECT_NEAR(MedianOf(radii), 0.9975, 0.005);
+  EXPECT_NEAR(MedianOf(periods), 40.0, 1.0);
+  EXPECT_LT(worst_radius, 0.03);
+  EXPECT_LT(worst_period, 5.0);
+}
+
+TEST(SwingPredictorTest, ModelIsScoredOnTheForecastItActsOn) {
+  // Scored on raw samples, the model's two-frame forecast would amplify σ = 1 px of noise
+  // ×3.5; Predict() forecasts from the smoothed state. The score must be the error of what
+  // Predict() returned: within 25 % of the RMS of those forecasts against the samples.
+  SwingPredictor predictor;
+  const int lead = predictor.options().lead_frames;
+  const int span = predictor.options().skill_frames;
+  std::vector<double> samples, forecasts(1000, std::nan(""));
+  for (int t = 0; t < 400; ++t) {
+    samples.push_back(Swing(t) + SimGaussian(8, 0, t));
+    predictor.Add(samples.back());
+    if (const auto f = predictor.Predict()) forecasts[t + lead] = *f;
+  }
+  ASSERT_EQ(predictor.chosen(), Forecaster::kModel);
+  double sum_sq = 0;
+  for (int t = 400 - span; t < 400; ++t) {
+    ASSERT_TRUE(std::isfinite(forecasts[t]));
+    sum_sq += (samples[t] - forecasts[t]) * (samples[t] - forecasts[t]);
+  }
+  const double acted_rms = std::sqrt(sum_sq / span);
+  EXPECT_NEAR(predictor.skill_rms(Forecaster::kModel), acted_rms, 0.25 * acted_rms);
 }
 
 TEST(SwingPredictorTest, RecoversTwoSamplesAfterAGust) {
