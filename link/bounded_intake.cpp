@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <poll.h>
 #include <spdlog/spdlog.h>
 #include <sys/eventfd.h>
@@ -30,8 +31,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t kBufferBytes = 64 * 1024;  // [bytes] relayed per read, each direction
-constexpr std::uint64_t kGreetingBytes = 64;     // [bytes] a ZMTP greeting
+constexpr std::size_t kBufferBytes = 256 * 1024;  // [bytes] relayed per read, each direction
+constexpr std::uint64_t kGreetingBytes = 64;      // [bytes] a ZMTP greeting
 // [ms] how often a peer at its budget is looked at again while no report comes.
 constexpr int kPausedPollMs = 100;
 
@@ -68,6 +69,7 @@ std::string AddressText(const sockaddr_storage& address) {
 struct PeerShared {
   std::atomic<std::uint64_t> consumed{0};  // [bytes] reported by the agent
   std::atomic<bool> paused{false};         // a report should wake the intake
+  std::atomic<bool> disconnect{false};     // the agent asked for the peer to be closed
   std::string address;                     // "HOST:PORT"
 };
 
@@ -178,7 +180,8 @@ bool BoundedIntakeOptions::IsValid(std::string* error) const {
   if (private_path.empty() || private_path.size() >= sizeof(sockaddr_un{}.sun_path)) {
     return fail("the private path must be 1 to 107 characters");
   }
-  if (budget_bytes < kBufferBytes) return fail("budget_bytes must be at least 64 KiB");
+  // The handshake (greeting, CurveZMQ HELLO and INITIATE: under 1 KiB) is never consumed.
+  if (budget_bytes < 4096) return fail("budget_bytes must be at least 4 KiB");
   if (over_budget_limit.count() <= 0) return fail("over_budget_limit must be positive");
   if (max_connections == 0) return fail("max_connections must be at least 1");
   return true;
@@ -301,6 +304,10 @@ void BoundedIntake::Impl::Accept(Clock::time_point now) {
                              SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) return;  // EAGAIN, or out of descriptors: the kernel keeps it queued
     accepted.fetch_add(1);
+    // As libzmq does on its own TCP sockets: a relayed message is written in pieces, which
+    // Nagle's algorithm would hold back for the peer's delayed acknowledgement.
+    const int one = 1;
+    (void)::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     std::size_t live = 0;
     for (const Peer& peer : peers) live += peer.closed ? 0 : 1;
     if (live >= options.max_connections) {
@@ -337,9 +344,17 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
       (up_events & POLLERR) != 0 || ((up_events & POLLHUP) != 0 && !peer.to_down.empty())) {
     return fail();
   }
+  if (peer.shared->disconnect.load()) return fail();
   Credit(peer, now);
+  // A paused peer is read again only once a quarter of its budget is free (a message was
+  // consumed), not for every few bytes of allowance: its pause, and the limit on it, last.
+  if (peer.paused && Room(peer) >= options.budget_bytes / 4) {
+    peer.paused = false;
+    peer.shared->paused.store(false);
+  }
   // Peer -> agent, within the budget.
-  if ((down_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_up.empty() && !peer.down_eof) {
+  if ((down_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_up.empty() && !peer.down_eof &&
+      !peer.paused) {
     const std::uint64_t room = Room(peer);
     if (room > 0) {
       std::uint64_t got = 0;
@@ -360,16 +375,12 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
   if ((peer.down_eof && peer.to_up.empty()) || (peer.up_eof && peer.to_down.empty())) {
     return fail();
   }
-  const bool at_budget = Room(peer) == 0;
-  if (at_budget && !peer.paused) {
+  if (Room(peer) == 0 && !peer.paused) {
     peer.paused = true;
     peer.paused_since = now;
     peer.shared->paused.store(true);
     paused_count.fetch_add(1);
-    Credit(peer, now);  // a report that came in between
-  } else if (!at_budget && peer.paused) {
-    peer.paused = false;
-    peer.shared->paused.store(false);
+    Credit(peer, now);  // a report that came in between is seen at the next wake
   }
   if (peer.paused && now - peer.paused_since >= options.over_budget_limit) {
     closed_over_budget.fetch_add(1);
@@ -388,7 +399,7 @@ void BoundedIntake::Impl::Run() {
     fds.push_back({listener, POLLIN, 0});
     bool any_paused = false;
     for (Peer& peer : peers) {
-      const bool reading = peer.to_up.empty() && !peer.down_eof && Room(peer) > 0;
+      const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused && Room(peer) > 0;
       // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
       // that a paused peer went.
       auto down = static_cast<short>((peer.paused ? POLLRDHUP : 0) | (reading ? POLLIN : 0) |
@@ -475,6 +486,19 @@ void BoundedIntake::Consumed(int agent_fd, std::uint64_t wire_bytes) {
     const std::uint64_t one = 1;
     (void)!::write(impl_->wake, &one, sizeof one);
   }
+}
+
+void BoundedIntake::Disconnect(int agent_fd) {
+  const std::string name = UnixPeerName(agent_fd);
+  if (name.empty()) return;
+  {
+    const std::lock_guard lock(impl_->mutex);
+    const auto found = impl_->shared.find(name);
+    if (found == impl_->shared.end()) return;
+    found->second->disconnect.store(true);
+  }
+  const std::uint64_t one = 1;
+  (void)!::write(impl_->wake, &one, sizeof one);
 }
 
 std::string BoundedIntake::PeerAddressOf(int agent_fd) const {

@@ -10,10 +10,10 @@
 // a unix socket in a directory only the agent's user can enter. Per peer it counts the bytes
 // relayed to the agent; the agent reports, for each message it receives, the bytes that message
 // took on the wire (Consumed). When what was relayed and not consumed reaches the budget, the
-// intake stops reading the peer (its bytes then wait in the kernel's socket buffers) and closes
-// it if that lasts over_budget_limit. An unfinished message of any length thus holds at most
-// the budget in the agent, plus the allowance for ZMTP's own traffic (greeting, handshake,
-// heartbeats) that no message accounts for.
+// intake stops reading the peer (its bytes then wait in the kernel's socket buffers) until a
+// quarter of the budget is free again, and closes it if that lasts over_budget_limit. An unfinished
+// message of any length thus holds at most the budget in the agent, plus the allowance for ZMTP's
+// own traffic (greeting, handshake, heartbeats) that no message accounts for.
 //
 // Each of the intake's connections to the agent is bound to a unique abstract unix address
 // before it connects: the agent finds a received message's peer by getpeername() on the
@@ -84,6 +84,9 @@ class BoundedIntake {
   // connection that is `agent_fd` on its side (ZMQ_SRCFD). Thread-safe; a descriptor that is
   // no connection of this intake is ignored.
   void Consumed(int agent_fd, std::uint64_t wire_bytes);
+  // Closes the peer behind `agent_fd` (the agent refuses what it sent), before it can send
+  // more. Thread-safe; a descriptor that is none of this intake's is ignored.
+  void Disconnect(int agent_fd);
   // "HOST:PORT" of the peer behind `agent_fd`; empty when it is none of this intake's.
   std::string PeerAddressOf(int agent_fd) const;
 

@@ -1,5 +1,6 @@
 #include "agent/server/intake_binding.hpp"
 
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -58,6 +59,12 @@ void IntakeBinding::Close() {
 
 void IntakeBinding::Consumed(const link::ReceivedWire& wire) const {
   if (intake_ && wire.source_fd >= 0) intake_->Consumed(wire.source_fd, wire.bytes);
+}
+
+void IntakeBinding::Disconnect(int fd) const {
+  if (fd < 0) return;
+  if (intake_) intake_->Disconnect(fd);
+  ::shutdown(fd, SHUT_RDWR);
 }
 
 std::string IntakeBinding::PeerAddressOf(int fd) const {

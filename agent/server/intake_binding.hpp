@@ -36,6 +36,9 @@ class IntakeBinding {
   bool active() const { return intake_ != nullptr; }
   // Tells the intake what the socket received (no-op without one).
   void Consumed(const link::ReceivedWire& wire) const;
+  // Ends the connection behind `fd` (ZMQ_SRCFD): at the intake, which then relays nothing more
+  // of it, and on libzmq's descriptor (shutdown(), not close(): libzmq frees it).
+  void Disconnect(int fd) const;
   // The peer's real address behind `fd` (ZMQ_SRCFD); empty without an intake.
   std::string PeerAddressOf(int fd) const;
   // The intake's counters; zero without one.

@@ -281,9 +281,8 @@ void StreamPublisher::Impl::ReceiveSubscriptions(zmq::socket_t& socket) {
     } else if (!decision.refusal.empty()) {
       // libzmq keeps every subscription it reads in a trie of its own for the connection
       // (XPUB_MANUAL too), whether applied or not: only ending the connection frees it. A
-      // station never sends what the book refuses. libzmq's descriptor: shutdown(), not close(),
-      // so libzmq sees the end and frees it (as ConnectionMonitor does).
-      if (fd >= 0) ::shutdown(fd, SHUT_RDWR);
+      // station never sends what the book refuses.
+      binding.Disconnect(fd);
       subscriptions_refused.fetch_add(1);
       const auto now = Clock::now();
       if (now - last_refusal_logged >= kRefusalLogPeriod) {
