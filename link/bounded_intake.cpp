@@ -31,8 +31,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t kBufferBytes = 256 * 1024;  // [bytes] relayed per read, each direction
-constexpr std::uint64_t kGreetingBytes = 64;      // [bytes] a ZMTP greeting
+constexpr std::size_t kBufferBytes =
+    std::size_t{256} * 1024;                  // [bytes] relayed per read, each direction
+constexpr std::uint64_t kGreetingBytes = 64;  // [bytes] a ZMTP greeting
 // [ms] how often a peer at its budget is looked at again while no report comes.
 constexpr int kPausedPollMs = 100;
 
@@ -205,6 +206,8 @@ struct BoundedIntake::Impl {
   std::atomic<bool> stopping{false};
   std::thread thread;
   std::uint64_t next_name = 0;
+  Clock::time_point accept_paused_until{};  // intake thread only
+  Clock::time_point last_relay_failure_logged{};
 
   mutable std::mutex mutex;  // guards `shared`
   std::unordered_map<std::string, std::shared_ptr<PeerShared>> shared;
@@ -297,19 +300,26 @@ bool BoundedIntake::Impl::ConnectUp(Peer& peer) {
 }
 
 void BoundedIntake::Impl::Accept(Clock::time_point now) {
+  std::size_t live = 0;
+  for (const Peer& peer : peers) live += peer.closed ? 0 : 1;
   while (true) {
     sockaddr_storage from{};
     socklen_t size = sizeof from;
     const int fd = ::accept4(listener, reinterpret_cast<sockaddr*>(&from), &size,
                              SOCK_NONBLOCK | SOCK_CLOEXEC);
-    if (fd < 0) return;  // EAGAIN, or out of descriptors: the kernel keeps it queued
+    if (fd < 0) {
+      // Out of descriptors: the connection stays queued in the kernel, and the listener
+      // readable; it is looked at again after a pause rather than in a busy loop.
+      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+        accept_paused_until = now + std::chrono::milliseconds(kPausedPollMs);
+      }
+      return;
+    }
     accepted.fetch_add(1);
     // As libzmq does on its own TCP sockets: a relayed message is written in pieces, which
     // Nagle's algorithm would hold back for the peer's delayed acknowledgement.
     const int one = 1;
     (void)::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    std::size_t live = 0;
-    for (const Peer& peer : peers) live += peer.closed ? 0 : 1;
     if (live >= options.max_connections) {
       // A peer that has not sent a whole greeting cannot be a station yet: it makes room.
       const auto silent = std::find_if(peers.begin(), peers.end(), [](const Peer& peer) {
@@ -321,16 +331,22 @@ void BoundedIntake::Impl::Accept(Clock::time_point now) {
         continue;
       }
       Close(*silent);
+      --live;
     }
+    ++live;
     Peer& peer = peers.emplace_back();
     peer.down = fd;
     peer.shared = std::make_shared<PeerShared>();
     peer.shared->address = AddressText(from);
     peer.credited_at = now;
     if (!ConnectUp(peer)) {
-      spdlog::warn("{}: cannot relay {} to the agent: {}", options.what, peer.shared->address,
-                   std::strerror(errno));
+      if (now - last_relay_failure_logged >= options.log_period) {  // at most a line a period
+        spdlog::warn("{}: cannot relay {} to the agent: {}", options.what, peer.shared->address,
+                     std::strerror(errno));
+        last_relay_failure_logged = now;
+      }
       Close(peer);
+      --live;
     }
   }
 }
@@ -396,8 +412,9 @@ void BoundedIntake::Impl::Run() {
     fds.clear();
     order.clear();
     fds.push_back({wake, POLLIN, 0});
-    fds.push_back({listener, POLLIN, 0});
-    bool any_paused = false;
+    const bool accepting = Clock::now() >= accept_paused_until;
+    fds.push_back({listener, static_cast<short>(accepting ? POLLIN : 0), 0});
+    bool any_paused = !accepting;
     for (Peer& peer : peers) {
       const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused && Room(peer) > 0;
       // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
@@ -424,7 +441,12 @@ void BoundedIntake::Impl::Run() {
     for (std::size_t i = 0; i < order.size(); ++i) {
       const pollfd& down = fds[2 + 2 * i];
       const pollfd& up = fds[3 + 2 * i];
-      Service(*order[i], down.revents, up.revents, now);
+      Peer& peer = *order[i];
+      // Only peers with something to do: the loop stays cheap with thousands of silent ones.
+      if (down.revents == 0 && up.revents == 0 && !peer.paused && !peer.shared->disconnect.load()) {
+        continue;
+      }
+      Service(peer, down.revents, up.revents, now);
     }
     if ((fds[1].revents & POLLIN) != 0) Accept(now);
     for (auto it = peers.begin(); it != peers.end();) {

@@ -76,7 +76,8 @@ struct StreamPublisherOptions {
   SubscriptionBookOptions subscriptions;
   // Issue 15: as CommandServerOptions::intake. A subscriber sends little (subscriptions of at
   // most max_subscription_bytes), so its budget is small.
-  std::optional<link::BoundedIntakeOptions> intake = link::IntakeWithBudget(64 * 1024);
+  std::optional<link::BoundedIntakeOptions> intake =
+      link::IntakeWithBudget(std::uint64_t{64} * 1024);
 };
 
 class StreamPublisher : public StreamSink {
