@@ -142,10 +142,12 @@ std::size_t ConnectionBudget() {
   link::ReturnLargeBuffersWhenFreed();
   kapfix::v1::QuietLibprotobufLog();  // invalid UTF-8 from a peer: refused, not printed
   // Each server's connection budget: half of the descriptors, less a reserve for photos,
-  // calibrations and logs.
+  // calibrations and logs; a connection behind the bounded intake takes three (the peer's,
+  // the intake's to the socket, and libzmq's end of that).
   constexpr std::uint64_t kReservedFiles = 256;
-  return static_cast<std::size_t>(
-      std::clamp<std::uint64_t>((open_files - std::min(open_files, kReservedFiles)) / 2, 16, 4096));
+  constexpr std::uint64_t kFilesPerConnection = 3;
+  return static_cast<std::size_t>(std::clamp<std::uint64_t>(
+      (open_files - std::min(open_files, kReservedFiles)) / 2 / kFilesPerConnection, 16, 4096));
 }
 
 }  // namespace

@@ -9,11 +9,13 @@ cd "$(dirname "$0")/.."
 runs=${1:-60000}
 [[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "usage: deploy/run-fuzz.sh [runs-per-fuzzer]" >&2; exit 2; }
 
-fuzzers=(stream_message_decoding_fuzzer command_handling_fuzzer multipart_request_fuzzer)
+fuzzers=(stream_message_decoding_fuzzer command_handling_fuzzer multipart_request_fuzzer
+         subscription_sequence_fuzzer)
 # [bytes] Longest input tried. Commands: just past kMaxCommandBytes (64 KiB), so the size limit's
 # edge is reachable. Stream messages: the decoder's work grows with length only, not in kind;
 # the 4 MiB limit itself is covered by tests/proto.
-declare -A max_len=([stream_message_decoding_fuzzer]=8192 [command_handling_fuzzer]=65552 [multipart_request_fuzzer]=65552)
+declare -A max_len=([stream_message_decoding_fuzzer]=8192 [command_handling_fuzzer]=65552 [multipart_request_fuzzer]=65552
+                 [subscription_sequence_fuzzer]=4096)
 
 start=$(date +%s)
 cmake --preset fuzz >/dev/null

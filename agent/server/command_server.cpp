@@ -13,6 +13,7 @@
 #include <zmq.hpp>
 
 #include "agent/server/command_intake.hpp"
+#include "agent/server/intake_binding.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 #include "link/connection_monitor.hpp"
 #include "link/envelope.hpp"
@@ -88,6 +89,7 @@ struct CommandServer::Impl {
   std::unique_ptr<zmq::context_t> context;
   std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
   std::unique_ptr<ConnectionMonitor> monitor;  // made by the socket thread
+  IntakeBinding binding;                       // bound by the socket thread
   std::thread thread;
 
   std::atomic<std::uint64_t> commands_ok{0};
@@ -116,9 +118,6 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
     if (options.curve) RequireCurve(*socket, *options.curve);
-    monitor = std::make_unique<ConnectionMonitor>(
-        "command server", ConnectionMonitorOptions{.max_connections = options.max_connections});
-    monitor->Start(*context, *socket);
     std::string why;
     const std::optional<link::LinkEndpoint> endpoint =
         link::ParseLinkEndpoint(options.bind_endpoint, &why);
@@ -126,8 +125,20 @@ void CommandServer::Impl::Run(std::promise<std::string> bound) {
       bound.set_exception(std::make_exception_ptr(std::runtime_error("command server: " + why)));
       return;
     }
-    socket->bind(endpoint->canonical);
-    bound.set_value(socket->get(zmq::sockopt::last_endpoint));
+    const bool behind_intake = options.intake && endpoint->canonical.rfind("tcp://", 0) == 0;
+    // Behind an intake the socket sees only the intake's unix connections: the intake keeps
+    // the connection budget, where the peers' TCP connections are.
+    monitor = std::make_unique<ConnectionMonitor>(
+        "command server",
+        ConnectionMonitorOptions{.max_connections =
+                                     behind_intake ? SIZE_MAX : options.max_connections});
+    monitor->Start(*context, *socket);
+    bound.set_value(binding.Bind(*socket, *endpoint, options.intake, options.max_connections,
+                                 "command server"));
+  } catch (const std::runtime_error& error) {
+    bound.set_exception(std::make_exception_ptr(std::runtime_error(
+        "command server cannot bind '" + options.bind_endpoint + "': " + error.what())));
+    return;
   } catch (const zmq::error_t& error) {
     bound.set_exception(std::make_exception_ptr(std::runtime_error(
         "command server cannot bind '" + options.bind_endpoint + "': " + error.what())));
@@ -141,7 +152,10 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
     Request request;
     try {
       // Blocks; Stop() shuts the context down, which makes it throw ETERM.
-      request.frame_count = link::ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames);
+      link::ReceivedWire wire{.curve = options.curve.has_value(), .skip_first = true};
+      request.frame_count =
+          link::ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames, &wire);
+      binding.Consumed(wire);  // the intake may read this peer's next message
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;  // EINTR (a signal): the partial request is lost, its peer times out
@@ -249,7 +263,10 @@ std::string CommandServer::Start() {
   return StartSocketThread(impl_.get(), "command server");
 }
 
-void CommandServer::Stop() { StopSocketThread(impl_.get()); }
+void CommandServer::Stop() {
+  StopSocketThread(impl_.get());
+  impl_->binding.Close();
+}
 
 CommandServer::Counters CommandServer::counters() const {
   Counters counters;
@@ -265,6 +282,10 @@ CommandServer::Counters CommandServer::counters() const {
     counters.handshakes_failed = connections.handshakes_failed;
     counters.over_budget = connections.over_budget;
   }
+  const link::BoundedIntake::Counters intake = impl_->binding.counters();
+  counters.over_budget += intake.over_connections;
+  counters.intake_paused = intake.paused;
+  counters.intake_closed = intake.closed_over_budget;
   return counters;
 }
 

@@ -20,6 +20,7 @@
 #include "agent/server/replay_window.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/curve_server_keys.hpp"
+#include "link/bounded_intake.hpp"
 
 namespace kapfix::agent {
 
@@ -49,6 +50,13 @@ struct CommandServerOptions {
   std::size_t max_connections = 4096;
   // CurveZMQ: encrypt every connection and accept only the listed stations. Unset: plain.
   std::optional<kapfix::link::CurveServerKeys> curve;
+  // Issue 15: a tcp:// endpoint is listened on by a link::BoundedIntake that relays each peer
+  // to the socket (bound on a private unix socket) and stops reading a peer that has sent
+  // `budget_bytes` the server has not received as whole messages (its endpoint fields are
+  // filled in by the server). Unset: the socket binds the endpoint itself, and an unfinished
+  // multipart message is held whole.
+  std::optional<link::BoundedIntakeOptions> intake =
+      link::IntakeWithBudget(4 * static_cast<std::uint64_t>(4 * kapfix::v1::kMaxCommandBytes));
 };
 
 class CommandServer {
@@ -63,6 +71,8 @@ class CommandServer {
     std::uint64_t keys_refused = 0;          // [count] CurveZMQ handshakes refused (unknown key)
     std::uint64_t handshakes_failed = 0;     // [count] ZMTP/CurveZMQ handshakes that failed
     std::uint64_t over_budget = 0;           // [count] connections shut down over the budget
+    std::uint64_t intake_paused = 0;         // [count] times a peer reached its byte budget
+    std::uint64_t intake_closed = 0;         // [count] peers closed for staying at it
   };
 
   // `control` must outlive the server (or at least Stop()).

@@ -1,6 +1,9 @@
 #include "agent/server/stream_publisher.hpp"
 
 #include <google/protobuf/descriptor.h>
+#include <spdlog/spdlog.h>
+#include <sys/socket.h>
+#include <zmq.h>
 
 #include <algorithm>
 #include <atomic>
@@ -17,6 +20,7 @@
 #include <utility>
 #include <zmq.hpp>
 
+#include "agent/server/intake_binding.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/heartbeat.pb.h"
 #include "link/connection_monitor.hpp"
@@ -58,6 +62,29 @@ kapfix::v1::Header* MutableHeader(Message& message) {
       message.GetReflection()->MutableMessage(&message, field));
 }
 
+// [ms] the longest the publisher thread waits before reading subscriptions (XPUB_MANUAL: they
+// wait in the socket until read, and a station's stream starts only once one is applied).
+constexpr auto kSubscriptionPoll = std::chrono::milliseconds(10);
+// [s] at most one log line per period about refused subscriptions.
+constexpr auto kRefusalLogPeriod = std::chrono::seconds(10);
+
+// A subscriber's connection, named by libzmq's descriptor and the address of its peer
+// (getpeername's bytes): a descriptor reused by a later connection gets another name.
+std::string ConnectionName(int fd) {
+  sockaddr_storage address{};
+  socklen_t size = sizeof address;
+  if (fd < 0 || ::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &size) != 0) return {};
+  return std::to_string(fd) + "/" +
+         std::string(reinterpret_cast<const char*>(&address),
+                     std::min<std::size_t>(size, sizeof address));
+}
+
+bool StillConnected(const std::string& name) {
+  const std::size_t slash = name.find('/');
+  if (slash == std::string::npos) return false;
+  return ConnectionName(std::atoi(name.substr(0, slash).c_str())) == name;
+}
+
 struct Pending {
   std::string topic;
   std::unique_ptr<Message> message;
@@ -68,13 +95,17 @@ struct Pending {
 
 struct StreamPublisher::Impl {
   explicit Impl(StreamPublisherOptions opts)
-      : options(std::move(opts)), video_min_interval(options.video_min_interval) {}
+      : options(std::move(opts)),
+        video_min_interval(options.video_min_interval),
+        book(options.subscriptions, StillConnected) {}
 
   void Run(std::promise<std::string> bound);
   void Loop(zmq::socket_t& socket);
   // Stamps and sends; false when ZeroMQ cannot take it now (high-water mark).
   bool Send(zmq::socket_t& socket, const std::string& topic, Message& message);
   void SendHeartbeat(zmq::socket_t& socket);
+  // Reads every subscription waiting and applies those the book admits.
+  void ReceiveSubscriptions(zmq::socket_t& socket);
 
   const StreamPublisherOptions options;
 
@@ -89,6 +120,7 @@ struct StreamPublisher::Impl {
   std::unique_ptr<zmq::context_t> context;
   std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
   std::unique_ptr<ConnectionMonitor> monitor;  // made by the socket thread
+  IntakeBinding binding;                       // bound by the socket thread
   std::thread thread;
 
   std::atomic<std::uint64_t> telemetry_sent{0};
@@ -103,13 +135,20 @@ struct StreamPublisher::Impl {
   // Publisher thread only.
   std::unordered_map<std::string, std::uint64_t> sequences;  // last sent, per topic
   Clock::time_point last_video_sent{};
+  SubscriptionBook book;
+  Clock::time_point last_refusal_logged{};
+  std::uint64_t refusals_not_logged = 0;
+  std::atomic<std::uint64_t> subscriptions_admitted{0};
+  std::atomic<std::uint64_t> subscriptions_refused{0};
 };
 
 void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
   std::optional<zmq::socket_t> socket;
   try {
-    socket.emplace(*context, zmq::socket_type::pub);
+    socket.emplace(*context, zmq::socket_type::xpub);
     socket->set(zmq::sockopt::linger, 0);
+    // Subscriptions come to the publisher thread, which applies the ones it admits.
+    socket->set(zmq::sockopt::xpub_manual, 1);
     // No XPUB_NODROP: with it, one subscriber that never reads stops the stream for all.
     // Without it, a full subscriber queue drops that subscriber's copy only.
     socket->set(zmq::sockopt::sndhwm, options.send_high_water_mark);
@@ -121,9 +160,6 @@ void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
     socket->set(zmq::sockopt::heartbeat_timeout,
                 static_cast<int>(options.zmtp_heartbeat_timeout.count()));
     if (options.curve) RequireCurve(*socket, *options.curve);
-    monitor = std::make_unique<ConnectionMonitor>(
-        "stream publisher", ConnectionMonitorOptions{.max_connections = options.max_connections});
-    monitor->Start(*context, *socket);
     std::string why;
     const std::optional<link::LinkEndpoint> endpoint =
         link::ParseLinkEndpoint(options.bind_endpoint, &why);
@@ -131,8 +167,19 @@ void StreamPublisher::Impl::Run(std::promise<std::string> bound) {
       bound.set_exception(std::make_exception_ptr(std::runtime_error("stream publisher: " + why)));
       return;
     }
-    socket->bind(endpoint->canonical);
-    bound.set_value(socket->get(zmq::sockopt::last_endpoint));
+    const bool behind_intake = options.intake && endpoint->canonical.rfind("tcp://", 0) == 0;
+    // Behind an intake the intake keeps the connection budget (CommandServer::Impl::Run).
+    monitor = std::make_unique<ConnectionMonitor>(
+        "stream publisher",
+        ConnectionMonitorOptions{.max_connections =
+                                     behind_intake ? SIZE_MAX : options.max_connections});
+    monitor->Start(*context, *socket);
+    bound.set_value(binding.Bind(*socket, *endpoint, options.intake, options.max_connections,
+                                 "stream publisher"));
+  } catch (const std::runtime_error& error) {
+    bound.set_exception(std::make_exception_ptr(std::runtime_error(
+        "stream publisher cannot bind '" + options.bind_endpoint + "': " + error.what())));
+    return;
   } catch (const zmq::error_t& error) {
     bound.set_exception(std::make_exception_ptr(std::runtime_error(
         "stream publisher cannot bind '" + options.bind_endpoint + "': " + error.what())));
@@ -159,7 +206,7 @@ void StreamPublisher::Impl::Loop(zmq::socket_t& socket) {
         return stopping || (!queue.empty() && now >= retry_at) ||
                (latest_video != nullptr && now >= video_due());
       };
-      Clock::time_point until = next_heartbeat;
+      Clock::time_point until = std::min(next_heartbeat, Clock::now() + kSubscriptionPoll);
       if (!queue.empty()) until = std::min(until, retry_at);
       if (latest_video != nullptr) until = std::min(until, video_due());
       wake.wait_until(lock, until, ready);
@@ -172,6 +219,7 @@ void StreamPublisher::Impl::Loop(zmq::socket_t& socket) {
       }
       if (latest_video != nullptr && now >= video_due()) video = std::move(latest_video);
     }
+    ReceiveSubscriptions(socket);
     if (item) {
       if (Send(socket, item->topic, *item->message)) {
         (item->topic == kTelemetryTopic ? telemetry_sent : other_sent).fetch_add(1);
@@ -214,6 +262,53 @@ bool StreamPublisher::Impl::Send(zmq::socket_t& socket, const std::string& topic
   return true;
 }
 
+void StreamPublisher::Impl::ReceiveSubscriptions(zmq::socket_t& socket) {
+  while (true) {
+    zmq::message_t message;
+    if (!socket.recv(message, zmq::recv_flags::dontwait)) return;
+    const int fd = zmq_msg_get(message.handle(), ZMQ_SRCFD);
+    // Counted as the longer of its two wire forms (a ZMTP 3.1 SUBSCRIBE command adds 9 bytes
+    // to a 3.0 subscription message); an intake never credits more than it relayed.
+    link::ReceivedWire wire{.curve = options.curve.has_value(), .source_fd = fd};
+    wire.bytes = link::ZmtpWireBytes(message.size() + 9, wire.curve);
+    bool more = message.more();
+    while (more) {  // anything else a subscriber sends: read, counted and dropped
+      zmq::message_t rest;
+      if (!socket.recv(rest, zmq::recv_flags::dontwait)) break;
+      wire.bytes += link::ZmtpWireBytes(rest.size(), wire.curve);
+      more = rest.more();
+    }
+    binding.Consumed(wire);
+    const SubscriptionBook::Decision decision =
+        book.Receive(ConnectionName(fd), message.to_string_view());
+    if (decision.action == SubscriptionBook::Action::kSubscribe) {
+      socket.set(zmq::sockopt::subscribe, decision.topic);  // for the pipe it came from
+      subscriptions_admitted.fetch_add(1);
+    } else if (decision.action == SubscriptionBook::Action::kUnsubscribe) {
+      socket.set(zmq::sockopt::unsubscribe, decision.topic);
+    } else if (!decision.refusal.empty()) {
+      // libzmq keeps every subscription it reads in a trie of its own for the connection
+      // (XPUB_MANUAL too), whether applied or not: only ending the connection frees it. A
+      // station never sends what the book refuses.
+      binding.Disconnect(fd);
+      subscriptions_refused.fetch_add(1);
+      const auto now = Clock::now();
+      if (now - last_refusal_logged >= kRefusalLogPeriod) {
+        const std::string address = binding.PeerAddressOf(fd);
+        spdlog::warn("stream publisher: closed a subscriber for {}{}{}", decision.refusal,
+                     address.empty() ? std::string() : " from " + address,
+                     refusals_not_logged == 0 ? std::string()
+                                              : " (and " + std::to_string(refusals_not_logged) +
+                                                    " other subscriptions since the last line)");
+        last_refusal_logged = now;
+        refusals_not_logged = 0;
+      } else {
+        ++refusals_not_logged;
+      }
+    }
+  }
+}
+
 void StreamPublisher::Impl::SendHeartbeat(zmq::socket_t& socket) {
   kapfix::v1::Heartbeat heartbeat;
   heartbeat.set_interval_ms(static_cast<std::uint32_t>(options.heartbeat_interval.count()));
@@ -247,6 +342,7 @@ void StreamPublisher::Stop() {
   }
   impl_->wake.notify_all();
   StopSocketThread(impl_.get());  // a send blocked inside ZeroMQ returns with ETERM
+  impl_->binding.Close();
 }
 
 bool StreamPublisher::Publish(const Message& message) {
@@ -303,6 +399,11 @@ StreamPublisher::Counters StreamPublisher::counters() const {
   counters.other_dropped = impl_->other_dropped.load();
   counters.heartbeats_sent = impl_->heartbeats_sent.load();
   counters.rejected = impl_->rejected.load();
+  counters.subscriptions_admitted = impl_->subscriptions_admitted.load();
+  counters.subscriptions_refused = impl_->subscriptions_refused.load();
+  const link::BoundedIntake::Counters intake = impl_->binding.counters();
+  counters.intake_paused = intake.paused;
+  counters.intake_closed = intake.closed_over_budget;
   return counters;
 }
 

@@ -19,7 +19,12 @@
 //   is per topic on the station's side, not here.
 // - What a subscriber sends is bounded: ZMQ_MAXMSGSIZE of max_subscription_bytes (a
 //   subscription is a message to the publisher; libzmq builds one trie node per byte of it),
-//   and a peer that does not finish its handshake within handshake_timeout is dropped.
+//   and a peer that does not finish its handshake within handshake_timeout is dropped. The
+//   socket is an XPUB in ZMQ_XPUB_MANUAL mode: each subscription reaches the publisher thread,
+//   which applies it only when the SubscriptionBook admits it (distinct subscriptions per peer
+//   and their length bounded) and ends the connection of a peer that goes beyond (libzmq
+//   keeps what it read in the connection's trie until then); behind an intake, each is
+//   reported consumed.
 // - A Heartbeat is published every heartbeat_interval.
 
 #include <google/protobuf/message.h>
@@ -33,6 +38,8 @@
 
 #include "agent/server/stream_sink.hpp"
 #include "link/curve_server_keys.hpp"
+#include "agent/server/subscription_book.hpp"
+#include "link/bounded_intake.hpp"
 
 namespace kapfix::agent {
 
@@ -66,20 +73,29 @@ struct StreamPublisherOptions {
   // CurveZMQ: encrypt every connection and let only the listed stations subscribe. Unset:
   // plain.
   std::optional<kapfix::link::CurveServerKeys> curve;
+  SubscriptionBookOptions subscriptions;
+  // Issue 15: as CommandServerOptions::intake. A subscriber sends little (subscriptions of at
+  // most max_subscription_bytes), so its budget is small.
+  std::optional<link::BoundedIntakeOptions> intake =
+      link::IntakeWithBudget(std::uint64_t{64} * 1024);
 };
 
 class StreamPublisher : public StreamSink {
  public:
   struct Counters {
-    std::uint64_t telemetry_sent = 0;     // [count] "telemetry" messages handed to ZeroMQ
-    std::uint64_t telemetry_dropped = 0;  // [count] refused: queue full
-    std::uint64_t video_sent = 0;         // [count]
-    std::uint64_t video_dropped = 0;      // [count] replaced by a newer frame before sending,
-                                          // or refused by ZeroMQ's high-water mark
-    std::uint64_t other_sent = 0;         // [count] every other topic
-    std::uint64_t other_dropped = 0;      // [count] refused: queue full
-    std::uint64_t heartbeats_sent = 0;    // [count]
-    std::uint64_t rejected = 0;           // [count] not a link message (no topic or header)
+    std::uint64_t telemetry_sent = 0;          // [count] "telemetry" messages handed to ZeroMQ
+    std::uint64_t telemetry_dropped = 0;       // [count] refused: queue full
+    std::uint64_t video_sent = 0;              // [count]
+    std::uint64_t video_dropped = 0;           // [count] replaced by a newer frame before sending,
+                                               // or refused by ZeroMQ's high-water mark
+    std::uint64_t other_sent = 0;              // [count] every other topic
+    std::uint64_t other_dropped = 0;           // [count] refused: queue full
+    std::uint64_t heartbeats_sent = 0;         // [count]
+    std::uint64_t rejected = 0;                // [count] not a link message (no topic or header)
+    std::uint64_t subscriptions_admitted = 0;  // [count] applied
+    std::uint64_t subscriptions_refused = 0;   // [count] over SubscriptionBookOptions' bounds
+    std::uint64_t intake_paused = 0;           // [count] times a peer reached its byte budget
+    std::uint64_t intake_closed = 0;           // [count] peers closed for staying at it
   };
 
   explicit StreamPublisher(StreamPublisherOptions options = {});

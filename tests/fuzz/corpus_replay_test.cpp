@@ -166,5 +166,74 @@ TEST(MultipartRequestTest, RequestsOfEveryShapeKeepTheInvariants) {
   EXPECT_EQ(FuzzMultipartRequest(many.data(), many.size()), 2000U);
 }
 
+// The subscription target's input format: records of peer byte, length, message.
+std::vector<std::uint8_t> Records(
+    const std::vector<std::pair<std::uint8_t, std::string>>& records) {
+  std::vector<std::uint8_t> input;
+  for (const auto& [peer, message] : records) {
+    input.push_back(peer);
+    input.push_back(static_cast<std::uint8_t>(message.size()));
+    input.insert(input.end(), message.begin(), message.end());
+  }
+  return input;
+}
+
+TEST(SubscriptionSequenceTest, APeerGetsAtMostItsBoundOfSubscriptions) {
+  std::vector<std::pair<std::uint8_t, std::string>> records;
+  for (int i = 0; i < 10; ++i) records.emplace_back(0, "\x01topic" + std::to_string(i));
+  const std::vector<std::uint8_t> input = Records(records);
+  EXPECT_EQ(FuzzSubscriptions(input.data(), input.size()), 4U);  // the target's bound
+}
+
+TEST(SubscriptionSequenceTest, AnUnsubscriptionFreesASlot) {
+  std::vector<std::pair<std::uint8_t, std::string>> records;
+  for (int i = 0; i < 5; ++i) records.emplace_back(0, "\x01topic" + std::to_string(i));
+  records.emplace_back(0, std::string(1, '\0') + "topic0");
+  records.emplace_back(0, "\x01topic9");
+  const std::vector<std::uint8_t> input = Records(records);
+  EXPECT_EQ(FuzzSubscriptions(input.data(), input.size()), 5U);
+}
+
+TEST(SubscriptionSequenceTest, GonePeersMakeRoomForNewOnes) {
+  // Three peers fill the book; a fourth is refused while they stay, admitted once one went.
+  const std::vector<std::uint8_t> full = Records({{0,
+                                                   "\x01"
+                                                   "a"},
+                                                  {1,
+                                                   "\x01"
+                                                   "a"},
+                                                  {2,
+                                                   "\x01"
+                                                   "a"},
+                                                  {3,
+                                                   "\x01"
+                                                   "a"}});
+  EXPECT_EQ(FuzzSubscriptions(full.data(), full.size()), 3U);
+  // Slot 0's connection closes (its new one sends no subscription).
+  const std::vector<std::uint8_t> room = Records({{0,
+                                                   "\x01"
+                                                   "a"},
+                                                  {1,
+                                                   "\x01"
+                                                   "a"},
+                                                  {2,
+                                                   "\x01"
+                                                   "a"},
+                                                  {0x80, "\x07"},
+                                                  {3,
+                                                   "\x01"
+                                                   "a"}});
+  EXPECT_EQ(FuzzSubscriptions(room.data(), room.size()), 4U);
+}
+
+TEST(SubscriptionSequenceTest, EveryKeptFileReplaysWithoutBreakingAnInvariant) {
+  const std::vector<CorpusFile> corpus = ReadCorpus("subscription_sequence_fuzzer");
+  ASSERT_GE(corpus.size(), 5U);
+  for (const CorpusFile& file : corpus) {
+    SCOPED_TRACE(file.name);
+    (void)FuzzSubscriptions(file.bytes.data(), file.bytes.size());
+  }
+}
+
 }  // namespace
 }  // namespace kapfix::fuzz

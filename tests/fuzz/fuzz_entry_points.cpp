@@ -5,12 +5,16 @@
 #include <google/protobuf/stubs/logging.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "agent/server/command_intake.hpp"
+#include "agent/server/subscription_book.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/envelope.hpp"
 #include "link/request_frames.hpp"
@@ -184,6 +188,63 @@ std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size) {
   const auto outcome = intake.Answer(kStation, frames.topic, frames.payload);
   RequireWellFormed(outcome.reply, outcome.command_sequence);
   return count;
+}
+
+std::size_t FuzzSubscriptions(const std::uint8_t* data, std::size_t size) {
+  using kapfix::agent::SubscriptionBook;
+  constexpr kapfix::agent::SubscriptionBookOptions kOptions{
+      .max_topics_per_peer = 4, .max_topic_bytes = 16, .max_peers = 3};
+  constexpr std::size_t kPeers = 8;
+  // Each of the 8 slots is one connection at a time; a disconnect gives the slot a new one.
+  std::array<std::uint64_t, kPeers> generation{};
+  const auto name = [&](std::size_t slot) {
+    return std::to_string(slot) + "/" + std::to_string(generation[slot]);
+  };
+  std::set<std::string> connected;
+  for (std::size_t slot = 0; slot < kPeers; ++slot) connected.insert(name(slot));
+  // What libzmq would hold: the subscriptions applied, per connection.
+  std::map<std::string, std::set<std::string>> applied;
+  SubscriptionBook book(kOptions,
+                        [&](const std::string& peer) { return connected.contains(peer); });
+  std::size_t subscribed = 0;
+  std::size_t at = 0;
+  while (at + 2 <= size) {
+    const std::uint8_t peer_byte = data[at];
+    const std::size_t length = std::min<std::size_t>(data[at + 1], size - at - 2);
+    const std::string_view message(reinterpret_cast<const char*>(data + at + 2), length);
+    at += 2 + length;
+    const std::size_t slot = peer_byte & 0x07U;
+    if ((peer_byte & 0x80U) != 0) {
+      // libzmq drops a closed connection's subscriptions itself.
+      connected.erase(name(slot));
+      applied.erase(name(slot));
+      ++generation[slot];
+      connected.insert(name(slot));
+    }
+    const std::string peer = name(slot);
+    const SubscriptionBook::Decision decision = book.Receive(peer, message);
+    std::set<std::string>& mine = applied[peer];
+    if (decision.action == SubscriptionBook::Action::kSubscribe) {
+      Require(message.size() >= 1 && message.front() == 1 && decision.topic == message.substr(1),
+              "a subscription applies the topic it carries");
+      Require(decision.topic.size() <= kOptions.max_topic_bytes, "a subscription over the length");
+      Require(mine.emplace(decision.topic).second, "a subscription applied twice");
+      Require(mine.size() <= kOptions.max_topics_per_peer, "a peer over its subscriptions");
+      ++subscribed;
+    } else if (decision.action == SubscriptionBook::Action::kUnsubscribe) {
+      Require(message.size() >= 1 && message.front() == 0 && decision.topic == message.substr(1),
+              "an unsubscription removes the topic it carries");
+      Require(mine.erase(std::string(decision.topic)) == 1,
+              "an unsubscription of a topic never applied");
+    } else {
+      Require(decision.refusal.empty() || (message.size() >= 1 && message.front() == 1),
+              "only a subscription is refused with a reason");
+    }
+    Require(book.TopicsOf(peer) == mine.size(), "the book's count differs from what was applied");
+    Require(book.peers() <= kOptions.max_peers, "the book remembers more peers than its bound");
+  }
+  Require(book.counters().admitted == subscribed, "the admitted count differs");
+  return subscribed;
 }
 
 void SilenceProtobufLogs() { google::protobuf::SetLogHandler(nullptr); }

@@ -39,6 +39,16 @@ kapfix::v1::ErrorCode FuzzCommand(const std::uint8_t* data, std::size_t size);
 // well-formed. Returns the number of frames.
 std::size_t FuzzMultipartRequest(const std::uint8_t* data, std::size_t size);
 
+// The agent's stream socket receiving a sequence of subscription messages from a few peers
+// (issue 15): the input is records of a peer byte (low 3 bits: which of 8 peers; bit 7: that
+// peer disconnects first and a new connection takes its place), a length byte L and L bytes
+// of message. Each goes through the SubscriptionBook the publisher uses (with small bounds),
+// and its decisions are applied to a model of libzmq's subscriptions. Checks that no peer
+// ever holds more subscriptions than the bound nor a longer one, that only admitted topics
+// are unsubscribed, that the book's count per peer matches the model, and that the book never
+// remembers more peers than its bound. Returns the number of subscriptions applied.
+std::size_t FuzzSubscriptions(const std::uint8_t* data, std::size_t size);
+
 // Drops protobuf's log lines (e.g. one per string field with invalid UTF-8), which would
 // flood a fuzzer's output and slow it down.
 void SilenceProtobufLogs();

@@ -1,0 +1,538 @@
+#include "link/bounded_intake.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <spdlog/spdlog.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstddef>
+#include <cstring>
+#include <list>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace kapfix::link {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kBufferBytes =
+    std::size_t{256} * 1024;                  // [bytes] relayed per read, each direction
+constexpr std::uint64_t kGreetingBytes = 64;  // [bytes] a ZMTP greeting
+// [ms] how often a peer at its budget is looked at again while no report comes.
+constexpr int kPausedPollMs = 100;
+
+std::string ErrnoText(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
+
+// The unix address `fd`'s peer is bound to, as bytes (an abstract one starts with '\0');
+// empty when it has none or `fd` is no unix connection.
+std::string UnixPeerName(int fd) {
+  sockaddr_un address{};
+  socklen_t size = sizeof address;
+  if (::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &size) != 0 ||
+      address.sun_family != AF_UNIX || size <= offsetof(sockaddr_un, sun_path)) {
+    return {};
+  }
+  return {address.sun_path, size - offsetof(sockaddr_un, sun_path)};
+}
+
+std::string AddressText(const sockaddr_storage& address) {
+  char host[INET6_ADDRSTRLEN] = {};
+  if (address.ss_family == AF_INET) {
+    const auto& in = reinterpret_cast<const sockaddr_in&>(address);
+    ::inet_ntop(AF_INET, &in.sin_addr, host, sizeof host);
+    return std::string(host) + ":" + std::to_string(ntohs(in.sin_port));
+  }
+  if (address.ss_family == AF_INET6) {
+    const auto& in6 = reinterpret_cast<const sockaddr_in6&>(address);
+    ::inet_ntop(AF_INET6, &in6.sin6_addr, host, sizeof host);
+    return "[" + std::string(host) + "]:" + std::to_string(ntohs(in6.sin6_port));
+  }
+  return "?";
+}
+
+// What the agent's thread and the intake's thread share about one peer.
+struct PeerShared {
+  std::atomic<std::uint64_t> consumed{0};  // [bytes] reported by the agent
+  std::atomic<bool> paused{false};         // a report should wake the intake
+  std::atomic<bool> disconnect{false};     // the agent asked for the peer to be closed
+  std::string address;                     // "HOST:PORT"
+};
+
+// Bytes read from one side, waiting to be written to the other.
+struct Pending {
+  std::vector<char> bytes = std::vector<char>(kBufferBytes);
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  bool empty() const { return begin == end; }
+};
+
+struct Peer {
+  int down = -1;     // the TCP connection from the peer
+  int up = -1;       // the intake's connection to the agent
+  std::string name;  // `up`'s abstract address, the key of the shared map
+  std::shared_ptr<PeerShared> shared;
+  Pending to_up;
+  Pending to_down;
+  bool down_eof = false;
+  bool up_eof = false;
+  bool closed = false;
+  std::uint64_t forwarded = 0;      // [bytes] relayed to the agent
+  std::uint64_t credit = 0;         // [bytes] of `forwarded` accounted for, at most all of it
+  std::uint64_t consumed_seen = 0;  // [bytes] shared->consumed already credited
+  Clock::time_point credited_at;
+  bool paused = false;
+  Clock::time_point paused_since;
+};
+
+// Reads what `from` has into `into` (at most `limit` bytes); false on end of stream or error.
+// `eof` set on end of stream.
+bool ReadInto(int from, Pending& into, std::size_t limit, bool* eof, std::uint64_t* got) {
+  const ssize_t n = ::recv(from, into.bytes.data(), std::min(limit, into.bytes.size()), 0);
+  if (n > 0) {
+    into.begin = 0;
+    into.end = static_cast<std::size_t>(n);
+    *got = static_cast<std::uint64_t>(n);
+    return true;
+  }
+  *got = 0;
+  if (n == 0) {
+    *eof = true;
+    return true;
+  }
+  return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+}
+
+// Writes what it can of `from` to `to`; false on error.
+bool WriteFrom(Pending& from, int to) {
+  while (!from.empty()) {
+    const ssize_t n = ::send(to, from.bytes.data() + from.begin, from.end - from.begin,
+                             MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+    from.begin += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// A listening TCP socket on `endpoint` ("tcp://HOST:PORT"); throws.
+int Listen(const std::string& endpoint) {
+  constexpr std::string_view kScheme = "tcp://";
+  if (endpoint.rfind(kScheme, 0) != 0) throw std::runtime_error("not a tcp endpoint: " + endpoint);
+  const std::string rest = endpoint.substr(kScheme.size());
+  const std::size_t colon = rest.rfind(':');
+  if (colon == std::string::npos) throw std::runtime_error("no port in " + endpoint);
+  std::string host = rest.substr(0, colon);
+  std::string port = rest.substr(colon + 1);
+  if (port == "*") port = "0";
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
+    host = host.substr(1, host.size() - 2);
+  }
+  addrinfo hints{};
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE | AI_NUMERICHOST | AI_NUMERICSERV;
+  hints.ai_family = host == "*" ? AF_INET : AF_UNSPEC;  // '*' is IPv4, as libzmq reads it
+  addrinfo* found = nullptr;
+  const int rc = ::getaddrinfo(host == "*" ? nullptr : host.c_str(), port.c_str(), &hints, &found);
+  if (rc != 0 || found == nullptr) {
+    throw std::runtime_error("cannot resolve " + endpoint + ": " + ::gai_strerror(rc));
+  }
+  const int fd = ::socket(found->ai_family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  const int one = 1;
+  if (fd < 0 || ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) != 0 ||
+      ::bind(fd, found->ai_addr, found->ai_addrlen) != 0 || ::listen(fd, SOMAXCONN) != 0) {
+    const std::string why = ErrnoText(("cannot bind " + endpoint).c_str());
+    ::freeaddrinfo(found);
+    if (fd >= 0) ::close(fd);
+    throw std::runtime_error(why);
+  }
+  ::freeaddrinfo(found);
+  return fd;
+}
+
+}  // namespace
+
+std::uint64_t ZmtpWireBytes(std::uint64_t frame_bytes, bool curve) {
+  // CurveZMQ: "\x07MESSAGE", 8-byte nonce, 16-byte MAC, 1 flags byte, then the frame.
+  const std::uint64_t body = frame_bytes + (curve ? 33 : 0);
+  return body + (body <= 255 ? 2 : 9);
+}
+
+bool BoundedIntakeOptions::IsValid(std::string* error) const {
+  const auto fail = [&](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return false;
+  };
+  if (public_endpoint.rfind("tcp://", 0) != 0) return fail("the public endpoint must be tcp://");
+  if (private_path.empty() || private_path.size() >= sizeof(sockaddr_un{}.sun_path)) {
+    return fail("the private path must be 1 to 107 characters");
+  }
+  // The handshake (greeting, CurveZMQ HELLO and INITIATE: under 1 KiB) is never consumed.
+  if (budget_bytes < 4096) return fail("budget_bytes must be at least 4 KiB");
+  if (over_budget_limit.count() <= 0) return fail("over_budget_limit must be positive");
+  if (max_connections == 0) return fail("max_connections must be at least 1");
+  return true;
+}
+
+struct BoundedIntake::Impl {
+  explicit Impl(BoundedIntakeOptions opts) : options(std::move(opts)) {}
+
+  void Run();
+  void Accept(Clock::time_point now);
+  bool ConnectUp(Peer& peer);
+  void Service(Peer& peer, short down_events, short up_events, Clock::time_point now);
+  void Credit(Peer& peer, Clock::time_point now) const;
+  std::uint64_t Room(const Peer& peer) const;
+  void Close(Peer& peer);
+  void LogClosed(Clock::time_point now, const std::string& address);
+
+  const BoundedIntakeOptions options;
+  int listener = -1;
+  int wake = -1;  // eventfd: Stop() and reports for paused peers
+  std::atomic<bool> stopping{false};
+  std::thread thread;
+  std::uint64_t next_name = 0;
+  Clock::time_point accept_paused_until{};  // intake thread only
+  Clock::time_point last_relay_failure_logged{};
+
+  mutable std::mutex mutex;  // guards `shared`
+  std::unordered_map<std::string, std::shared_ptr<PeerShared>> shared;
+
+  std::list<Peer> peers;  // intake thread only; oldest first
+
+  std::atomic<std::uint64_t> accepted{0};
+  std::atomic<std::uint64_t> over_connections{0};
+  std::atomic<std::uint64_t> paused_count{0};
+  std::atomic<std::uint64_t> closed_over_budget{0};
+  std::atomic<std::uint64_t> open{0};
+
+  // Log summary (intake thread only).
+  Clock::time_point last_logged{};
+  std::uint64_t not_logged = 0;
+};
+
+void BoundedIntake::Impl::Credit(Peer& peer, Clock::time_point now) const {
+  const std::uint64_t consumed = peer.shared->consumed.load();
+  const auto elapsed_us =
+      std::chrono::duration_cast<std::chrono::microseconds>(now - peer.credited_at).count();
+  const std::uint64_t allowance =
+      options.allowance_bytes_per_s *
+      static_cast<std::uint64_t>(std::max<std::int64_t>(0, elapsed_us)) / 1'000'000;
+  if (allowance > 0 && options.allowance_bytes_per_s > 0) {
+    // Advanced by the time the whole bytes stand for, so no fraction is lost.
+    peer.credited_at += std::chrono::microseconds(
+        static_cast<std::int64_t>(allowance * 1'000'000 / options.allowance_bytes_per_s));
+  }
+  // Credit never runs ahead of what was relayed: reports and the allowance can only account
+  // for bytes already sent, never bank room for a later message.
+  peer.credit = std::min(peer.forwarded, peer.credit + (consumed - peer.consumed_seen) + allowance);
+  peer.consumed_seen = consumed;
+}
+
+std::uint64_t BoundedIntake::Impl::Room(const Peer& peer) const {
+  const std::uint64_t outstanding = peer.forwarded - peer.credit;
+  return outstanding >= options.budget_bytes ? 0 : options.budget_bytes - outstanding;
+}
+
+void BoundedIntake::Impl::Close(Peer& peer) {
+  if (peer.closed) return;
+  peer.closed = true;
+  if (peer.down >= 0) ::close(peer.down);
+  if (peer.up >= 0) ::close(peer.up);
+  peer.down = peer.up = -1;
+  if (!peer.name.empty()) {
+    const std::lock_guard lock(mutex);
+    shared.erase(peer.name);
+  }
+}
+
+void BoundedIntake::Impl::LogClosed(Clock::time_point now, const std::string& address) {
+  if (now - last_logged < options.log_period) {
+    ++not_logged;
+    return;
+  }
+  spdlog::warn(
+      "{}: closed {}: {} bytes sent without the agent receiving a whole message for {} ms{}",
+      options.what, address, options.budget_bytes, options.over_budget_limit.count(),
+      not_logged == 0
+          ? std::string()
+          : " (and " + std::to_string(not_logged) + " other peer(s) since the last line)");
+  last_logged = now;
+  not_logged = 0;
+}
+
+bool BoundedIntake::Impl::ConnectUp(Peer& peer) {
+  peer.up = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (peer.up < 0) return false;
+  // A unique abstract address (no file): the agent's side reads it with getpeername().
+  sockaddr_un own{};
+  own.sun_family = AF_UNIX;
+  const std::string name = std::string(1, '\0') + "kapfix-intake-" + std::to_string(::getpid()) +
+                           "-" + std::to_string(reinterpret_cast<std::uintptr_t>(this)) + "-" +
+                           std::to_string(++next_name);
+  std::memcpy(own.sun_path, name.data(), name.size());
+  const auto own_size = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + name.size());
+  sockaddr_un agent{};
+  agent.sun_family = AF_UNIX;
+  std::memcpy(agent.sun_path, options.private_path.data(), options.private_path.size());
+  if (::bind(peer.up, reinterpret_cast<const sockaddr*>(&own), own_size) != 0 ||
+      ::connect(peer.up, reinterpret_cast<const sockaddr*>(&agent), sizeof agent) != 0) {
+    return false;  // EAGAIN: the agent's backlog is full; the peer is closed, it may retry
+  }
+  peer.name = name;
+  const std::lock_guard lock(mutex);
+  shared.emplace(peer.name, peer.shared);
+  return true;
+}
+
+void BoundedIntake::Impl::Accept(Clock::time_point now) {
+  std::size_t live = 0;
+  for (const Peer& peer : peers) live += peer.closed ? 0 : 1;
+  while (true) {
+    sockaddr_storage from{};
+    socklen_t size = sizeof from;
+    const int fd = ::accept4(listener, reinterpret_cast<sockaddr*>(&from), &size,
+                             SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) {
+      // Out of descriptors: the connection stays queued in the kernel, and the listener
+      // readable; it is looked at again after a pause rather than in a busy loop.
+      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+        accept_paused_until = now + std::chrono::milliseconds(kPausedPollMs);
+      }
+      return;
+    }
+    accepted.fetch_add(1);
+    // As libzmq does on its own TCP sockets: a relayed message is written in pieces, which
+    // Nagle's algorithm would hold back for the peer's delayed acknowledgement.
+    const int one = 1;
+    (void)::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    if (live >= options.max_connections) {
+      // A peer that has not sent a whole greeting cannot be a station yet: it makes room.
+      const auto silent = std::find_if(peers.begin(), peers.end(), [](const Peer& peer) {
+        return !peer.closed && peer.forwarded < kGreetingBytes;
+      });
+      over_connections.fetch_add(1);
+      if (silent == peers.end()) {
+        ::close(fd);
+        continue;
+      }
+      Close(*silent);
+      --live;
+    }
+    ++live;
+    Peer& peer = peers.emplace_back();
+    peer.down = fd;
+    peer.shared = std::make_shared<PeerShared>();
+    peer.shared->address = AddressText(from);
+    peer.credited_at = now;
+    if (!ConnectUp(peer)) {
+      if (now - last_relay_failure_logged >= options.log_period) {  // at most a line a period
+        spdlog::warn("{}: cannot relay {} to the agent: {}", options.what, peer.shared->address,
+                     std::strerror(errno));
+        last_relay_failure_logged = now;
+      }
+      Close(peer);
+      --live;
+    }
+  }
+}
+
+void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events,
+                                  Clock::time_point now) {
+  const auto fail = [&] { Close(peer); };
+  // A peer that reset, or hung up while it waits at its budget, is gone: nothing it still
+  // sends would be read. The agent's side gone while the peer is not reading: the same.
+  if ((down_events & (POLLHUP | POLLERR)) != 0 || ((down_events & POLLRDHUP) != 0 && peer.paused) ||
+      (up_events & POLLERR) != 0 || ((up_events & POLLHUP) != 0 && !peer.to_down.empty())) {
+    return fail();
+  }
+  if (peer.shared->disconnect.load()) return fail();
+  Credit(peer, now);
+  // A paused peer is read again only once a quarter of its budget is free (a message was
+  // consumed), not for every few bytes of allowance: its pause, and the limit on it, last.
+  if (peer.paused && Room(peer) >= options.budget_bytes / 4) {
+    peer.paused = false;
+    peer.shared->paused.store(false);
+  }
+  // Peer -> agent, within the budget.
+  if ((down_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_up.empty() && !peer.down_eof &&
+      !peer.paused) {
+    const std::uint64_t room = Room(peer);
+    if (room > 0) {
+      std::uint64_t got = 0;
+      if (!ReadInto(peer.down, peer.to_up, static_cast<std::size_t>(room), &peer.down_eof, &got)) {
+        return fail();
+      }
+      peer.forwarded += got;
+    }
+  }
+  if (!WriteFrom(peer.to_up, peer.up)) return fail();
+  // Agent -> peer: not bounded here (the agent decides what it sends).
+  if ((up_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_down.empty() && !peer.up_eof) {
+    std::uint64_t got = 0;
+    if (!ReadInto(peer.up, peer.to_down, kBufferBytes, &peer.up_eof, &got)) return fail();
+  }
+  if (!WriteFrom(peer.to_down, peer.down)) return fail();
+  // Either side gone and what it sent passed on: the connection ends on both sides.
+  if ((peer.down_eof && peer.to_up.empty()) || (peer.up_eof && peer.to_down.empty())) {
+    return fail();
+  }
+  if (Room(peer) == 0 && !peer.paused) {
+    peer.paused = true;
+    peer.paused_since = now;
+    peer.shared->paused.store(true);
+    paused_count.fetch_add(1);
+    Credit(peer, now);  // a report that came in between is seen at the next wake
+  }
+  if (peer.paused && now - peer.paused_since >= options.over_budget_limit) {
+    closed_over_budget.fetch_add(1);
+    LogClosed(now, peer.shared->address);
+    fail();
+  }
+}
+
+void BoundedIntake::Impl::Run() {
+  std::vector<pollfd> fds;
+  std::vector<Peer*> order;
+  while (!stopping.load()) {
+    fds.clear();
+    order.clear();
+    fds.push_back({wake, POLLIN, 0});
+    const bool accepting = Clock::now() >= accept_paused_until;
+    fds.push_back({listener, static_cast<short>(accepting ? POLLIN : 0), 0});
+    bool any_paused = !accepting;
+    for (Peer& peer : peers) {
+      const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused && Room(peer) > 0;
+      // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
+      // that a paused peer went.
+      auto down = static_cast<short>((peer.paused ? POLLRDHUP : 0) | (reading ? POLLIN : 0) |
+                                     (peer.to_down.empty() ? 0 : POLLOUT));
+      auto up = static_cast<short>((peer.to_down.empty() && !peer.up_eof ? POLLIN : 0) |
+                                   (peer.to_up.empty() ? 0 : POLLOUT));
+      fds.push_back({peer.down, down, 0});
+      fds.push_back({peer.up, up, 0});
+      order.push_back(&peer);
+      any_paused = any_paused || peer.paused;
+    }
+    const int rc = ::poll(fds.data(), fds.size(), any_paused ? kPausedPollMs : -1);
+    if (rc < 0 && errno != EINTR) {
+      spdlog::error("{}: poll failed: {}", options.what, std::strerror(errno));
+      return;
+    }
+    const Clock::time_point now = Clock::now();
+    if ((fds[0].revents & POLLIN) != 0) {
+      std::uint64_t count = 0;
+      (void)!::read(wake, &count, sizeof count);
+    }
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const pollfd& down = fds[2 + 2 * i];
+      const pollfd& up = fds[3 + 2 * i];
+      Peer& peer = *order[i];
+      // Only peers with something to do: the loop stays cheap with thousands of silent ones.
+      if (down.revents == 0 && up.revents == 0 && !peer.paused && !peer.shared->disconnect.load()) {
+        continue;
+      }
+      Service(peer, down.revents, up.revents, now);
+    }
+    if ((fds[1].revents & POLLIN) != 0) Accept(now);
+    for (auto it = peers.begin(); it != peers.end();) {
+      it = it->closed ? peers.erase(it) : std::next(it);
+    }
+    open.store(peers.size());
+  }
+}
+
+BoundedIntake::BoundedIntake(BoundedIntakeOptions options)
+    : impl_(std::make_unique<Impl>(std::move(options))) {}
+
+BoundedIntake::~BoundedIntake() { Stop(); }
+
+std::string BoundedIntake::Start() {
+  if (impl_->thread.joinable()) throw std::runtime_error(impl_->options.what + " already started");
+  std::string why;
+  if (!impl_->options.IsValid(&why)) throw std::runtime_error(impl_->options.what + ": " + why);
+  impl_->listener = Listen(impl_->options.public_endpoint);
+  impl_->wake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  if (impl_->wake < 0) {
+    ::close(impl_->listener);
+    throw std::runtime_error(ErrnoText("eventfd"));
+  }
+  sockaddr_storage bound{};
+  socklen_t size = sizeof bound;
+  ::getsockname(impl_->listener, reinterpret_cast<sockaddr*>(&bound), &size);
+  impl_->stopping.store(false);
+  impl_->thread = std::thread([impl = impl_.get()] { impl->Run(); });
+  return "tcp://" + AddressText(bound);
+}
+
+void BoundedIntake::Stop() {
+  if (!impl_->thread.joinable()) return;
+  impl_->stopping.store(true);
+  const std::uint64_t one = 1;
+  (void)!::write(impl_->wake, &one, sizeof one);
+  impl_->thread.join();
+  for (Peer& peer : impl_->peers) impl_->Close(peer);
+  impl_->peers.clear();
+  impl_->open.store(0);
+  ::close(impl_->listener);
+  ::close(impl_->wake);
+  impl_->listener = impl_->wake = -1;
+}
+
+void BoundedIntake::Consumed(int agent_fd, std::uint64_t wire_bytes) {
+  const std::string name = UnixPeerName(agent_fd);
+  if (name.empty()) return;
+  std::shared_ptr<PeerShared> peer;
+  {
+    const std::lock_guard lock(impl_->mutex);
+    const auto found = impl_->shared.find(name);
+    if (found == impl_->shared.end()) return;
+    peer = found->second;
+  }
+  peer->consumed.fetch_add(wire_bytes);
+  if (peer->paused.load()) {
+    const std::uint64_t one = 1;
+    (void)!::write(impl_->wake, &one, sizeof one);
+  }
+}
+
+void BoundedIntake::Disconnect(int agent_fd) {
+  const std::string name = UnixPeerName(agent_fd);
+  if (name.empty()) return;
+  {
+    const std::lock_guard lock(impl_->mutex);
+    const auto found = impl_->shared.find(name);
+    if (found == impl_->shared.end()) return;
+    found->second->disconnect.store(true);
+  }
+  const std::uint64_t one = 1;
+  (void)!::write(impl_->wake, &one, sizeof one);
+}
+
+std::string BoundedIntake::PeerAddressOf(int agent_fd) const {
+  const std::string name = UnixPeerName(agent_fd);
+  const std::lock_guard lock(impl_->mutex);
+  const auto found = impl_->shared.find(name);
+  return found == impl_->shared.end() ? std::string() : found->second->address;
+}
+
+BoundedIntake::Counters BoundedIntake::counters() const {
+  return {impl_->accepted.load(), impl_->over_connections.load(), impl_->paused_count.load(),
+          impl_->closed_over_budget.load(), impl_->open.load()};
+}
+
+}  // namespace kapfix::link
