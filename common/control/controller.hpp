@@ -1,6 +1,8 @@
 #pragma once
 
+#include <limits>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "common/control/lens_calibration.hpp"
@@ -39,6 +41,26 @@ struct ControllerGains {
   bool IsValid(std::string* error) const;
 };
 
+// What a controller that learns in flight currently believes, read-only (issue 9: for
+// telemetry, the flight report and the station).
+struct ControlEstimate {
+  struct Axis {
+    // [deg/px] the online estimate of the lens's degrees per pixel (from the loop's commands
+    // and the measured response); the stored calibration until the first fit.
+    double deg_per_px = 0;
+    // [1] relative standard deviation of that estimate, σ/estimate; +∞ before a fit.
+    double relative_sigma = std::numeric_limits<double>::infinity();
+    // Whether the estimate is trusted (only then does the controller act on it).
+    bool trusted = false;
+    // [0, 1] share of the swing forecast's feed-forward in this axis's target (0: plain P).
+    double forecast_weight = 0;
+  };
+  Axis pan;
+  Axis tilt;
+  // [0, 1] one figure for both axes (Telemetry.forecast_weight): their mean.
+  double forecast_weight() const { return 0.5 * (pan.forecast_weight + tilt.forecast_weight); }
+};
+
 // Turns one frame's measurement into servo targets. `current` is what the frame was seen
 // through: the servo angles while it was exposed (in simulation the servos' output angles;
 // on open-loop hardware the command that had taken effect by then). Working from the angles
@@ -58,6 +80,9 @@ class Controller {
   // stays, so a gain change — or the same gains sent again — causes no transient (issue 15,
   // item 7). Throws std::invalid_argument for gains that are not IsValid (nothing changes).
   virtual void SetGains(const ControllerGains& gains) = 0;
+  // The online calibration estimate and forecast weights; nothing for a controller that
+  // does not learn in flight (P, PID).
+  virtual std::optional<ControlEstimate> estimate() const { return std::nullopt; }
 };
 
 // Limits each axis's move from `current` to rate_deg_per_s · dt_s; rate 0 = no limit. A

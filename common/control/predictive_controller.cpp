@@ -108,6 +108,14 @@ bool PredictiveController::Adapt() {
   return true;
 }
 
+std::optional<ControlEstimate> PredictiveController::estimate() const {
+  const auto axis = [](const DegPerPxEstimator& estimator, const AxisTrust& trust) {
+    return ControlEstimate::Axis{estimator.estimate_deg_per_px(), estimator.relative_sigma(),
+                                 estimator.trusted(), trust.weight};
+  };
+  return ControlEstimate{axis(pan_estimator_, pan_trust_), axis(tilt_estimator_, tilt_trust_)};
+}
+
 void PredictiveController::SetGains(const ControllerGains& gains) {
   fallback_.SetGains(gains);  // validates
   gains_ = gains;

@@ -57,6 +57,8 @@ class PredictiveController final : public Controller {
   void SetCalibration(const LensCalibration& calibration) override;
   // Keeps the swing models, the online calibration and the hand-over state.
   void SetGains(const ControllerGains& gains) override;
+  // Per axis: the online deg/px estimate, its relative σ, trust, and the forecast weight.
+  std::optional<ControlEstimate> estimate() const override;
   // The calibration the controller acts on now (the stored one, moved by the online estimate).
   const LensCalibration& calibration() const { return calibration_; }
 

@@ -160,6 +160,32 @@ TEST(PredictiveControllerTest, KeepsItsForecastWhileTheViewShowsItWorks) {
   EXPECT_TRUE(controller.predicting_pan());
 }
 
+TEST(PredictiveControllerEstimateTest, ReportsTheStoredCalibrationUntrustedBeforeAnyFit) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.2}, Lead(2));
+  const std::optional<ControlEstimate> estimate = controller.estimate();
+  ASSERT_TRUE(estimate.has_value());
+  EXPECT_DOUBLE_EQ(estimate->pan.deg_per_px, 0.1);
+  EXPECT_DOUBLE_EQ(estimate->tilt.deg_per_px, 0.2);
+  EXPECT_FALSE(estimate->pan.trusted);
+  EXPECT_FALSE(std::isfinite(estimate->pan.relative_sigma));
+}
+
+TEST(PredictiveControllerEstimateTest, ReportsTheForecastWeightItActsOn) {
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  for (int t = 0; t < 200; ++t) controller.Update(Measured(-NumericLoop::Swing(t)), {});
+  const std::optional<ControlEstimate> estimate = controller.estimate();
+  ASSERT_TRUE(estimate.has_value());
+  EXPECT_DOUBLE_EQ(estimate->pan.forecast_weight, controller.pan_forecast_weight());
+  EXPECT_DOUBLE_EQ(estimate->pan.forecast_weight, 0.0);  // handed over (see above)
+  EXPECT_DOUBLE_EQ(estimate->forecast_weight(),
+                   0.5 * (estimate->pan.forecast_weight + estimate->tilt.forecast_weight));
+}
+
+TEST(PredictiveControllerEstimateTest, PlainPHasNoEstimate) {
+  const ProportionalController controller(NoDeadBand(), {0.1, 0.1});
+  EXPECT_FALSE(controller.estimate().has_value());
+}
+
 }  // namespace
 }  // namespace kapfix
 
