@@ -8,6 +8,7 @@
 
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
+#include "common/evaluation/free_swing_slice.hpp"
 
 namespace kapfix {
 namespace {
@@ -60,6 +61,9 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     return fail("calibration scale must be > 0, got " + std::to_string(calibration_scale));
   }
   if (frames < 1) return fail("closed loop needs ≥ 1 frame, got " + std::to_string(frames));
+  if (start == Start::kAfterSsp && ssp_frames < 2) {
+    return fail("SSP before fixation needs ≥ 2 frames, got " + std::to_string(ssp_frames));
+  }
   if (!std::isfinite(frame_period_s) || frame_period_s <= 0) {
     return fail("frame period must be > 0 s, got " + std::to_string(frame_period_s));
   }
@@ -112,8 +116,14 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   std::unique_ptr<Controller> controller = MakeController(
       options.controller, options.gains, calibration, EffectivePredictive(options), &error);
   const auto* predictive = dynamic_cast<const PredictiveController*>(controller.get());
-  FixationLoop loop(options.fixation, MakeSearchStrategy(options.strategy, &error),
-                    std::move(controller), calibration);
+  const std::shared_ptr<const SearchStrategy> strategy =
+      MakeSearchStrategy(options.strategy, &error);
+  FixationOptions fixation = options.fixation;
+  if (options.start == ClosedLoopOptions::Start::kAfterSsp) {
+    fixation.slice = FreeSwingSlice(platform, fixation, *strategy, options.ssp_frames);
+    platform.Step();
+  }
+  FixationLoop loop(fixation, strategy, std::move(controller), calibration);
   // What the controller believes the servos show: the command sent `delay` frames before,
   // clamped as the servo clamps it (the servos' true output angles stay the simulation's).
   std::vector<std::pair<int, ServoTargets>> commanded;  // (frame it was sent after, command)
@@ -160,16 +170,18 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   };
   // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
   // controller's history starts there, as the agent's does when it fixates mid-stream.
+  const cv::Point2d held = platform.ViewOffset();  // [px] the reference's view
   {
     const SimulatedFrame reference = platform.CaptureFrame();
     loop.SetReference(reference.image);
     const FixationLoop::Step step =
-        loop.Process(reference.image, seen_through_at(0), options.frame_period_s);
-    command(0, step.targets);
+        loop.Process(reference.image, seen_through_at(reference.frame), options.frame_period_s);
+    command(reference.frame, step.targets);
   }
 
   ClosedLoopFigures figures;
   figures.frames = options.frames;
+  figures.slice = fixation.slice;
   std::vector<double> loop_us;
   loop_us.reserve(static_cast<std::size_t>(options.frames));
   std::vector<double> errors;
@@ -182,7 +194,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   for (int i = 0; i < options.frames; ++i) {
     platform.Step();
     const SimulatedFrame frame = platform.CaptureFrame();
-    const cv::Point2d offset = platform.ViewOffset();  // of the frame just captured
+    const cv::Point2d offset = platform.ViewOffset() - held;  // of the frame just captured
     const cv::Point2d open = platform.OpenLoopOffset();
     figures.view_offsets.push_back(offset);
     figures.angles.push_back({frame.pan_deg, frame.tilt_deg});
