@@ -39,6 +39,9 @@ bool FixationOptions::IsValid(std::string* error) const {
     return fail("lock-regain confidence must be in [lock-lost confidence, 1], got " +
                 std::to_string(lock_regain_confidence));
   }
+  if (!(lock_regain_px > 0)) {
+    return fail("lock-regain distance must be > 0 px, got " + std::to_string(lock_regain_px));
+  }
   if (lock_regain_frames < 1) {
     return fail("lock-regain frames must be ≥ 1, got " + std::to_string(lock_regain_frames));
   }
@@ -92,6 +95,7 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
   clear_frames_ = 0;
   confirmed_ = false;
   reacquiring_ = false;
+  returning_ = false;
   controller_->Reset();
 }
 
@@ -130,20 +134,33 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
 
   const bool confident = step.match.found && step.match.confidence >= options_.lock_lost_confidence;
   const bool clear = step.match.found && step.match.confidence >= options_.lock_regain_confidence;
-  untrusted_frames_ = confident ? 0 : untrusted_frames_ + 1;
   clear_frames_ = clear ? clear_frames_ + 1 : 0;
+  // A run of untrusted frames ends only with lock_regain_frames clear frames in a row, not
+  // with one good frame: on a chessboard a slice may alternate right and ambiguous matches
+  // frame by frame (left01.jpg after SSP: 11 % of the frames grossly off, never 5 untrusted
+  // in a row) while the loop swings ±60 px between them.
+  if (!confident) ++untrusted_frames_;
+  if (clear_frames_ >= options_.lock_regain_frames) untrusted_frames_ = 0;
   // Only a confirmed lock rides out a short run of untrusted frames (a blurred frame, a
   // brightness step); one that never stood clear of its rivals is lost at the first.
   const int grace = confirmed_ ? options_.lock_lost_frames : 1;
   if (untrusted_frames_ >= grace) {
     reacquiring_ = true;
+    returning_ = false;
     confirmed_ = false;
   }
   if (clear_frames_ >= options_.lock_regain_frames) {
+    returning_ = returning_ || (reacquiring_ && stored);
     reacquiring_ = false;
     confirmed_ = true;
   }
-  step.lock_lost = reacquiring_;
+  if (returning_ && confident) {
+    cv::Point2d measured = step.match.displacement;
+    if (options_.search.axis == SearchAxis::kX) measured.y = 0;
+    if (options_.search.axis == SearchAxis::kY) measured.x = 0;
+    if (std::hypot(measured.x, measured.y) <= options_.lock_regain_px) returning_ = false;
+  }
+  step.lock_lost = reacquiring_ || returning_;
   const bool trusted = confident && !reacquiring_;
   step.trusted = trusted;
   if (confident) origin_ = step.match.shift;

@@ -26,7 +26,8 @@ struct FixationOptions {
   // A frame whose match confidence is below this (or that found no match) is not trusted:
   // the controller gets it as not found. After lock_lost_frames such frames in a row the
   // lock is reported lost (the agent then re-runs SSP, SPEC §2.6); before the lock is
-  // confirmed (see lock_regain_confidence), after the first.
+  // confirmed (see lock_regain_confidence), after the first. Only lock_regain_frames clear
+  // frames in a row end such a run: single good frames between bad ones do not.
   // MatchConfidence sees a repetitive texture's rival (issue 9): below this the match is
   // ambiguous or poor and must not steer the servos.
   double lock_lost_confidence = 0.2;
@@ -44,6 +45,10 @@ struct FixationOptions {
   // it is not one. Until the lock is confirmed there is no grace: the first untrusted frame
   // reports the lock lost, so that a view that never really locked is never held silently.
   double lock_regain_confidence = 0.4;
+  // [px] A re-acquired reference steers the servos back at once, but the lock counts as held
+  // again (lock_lost false) only once the measured displacement is within this: found 60 px
+  // away, the view is not held yet (stored reference only; follow has no such view).
+  double lock_regain_px = 10;
   enum class Reference {
     kStored,    // fixate: every frame is compared with the reference stored by SetReference
     kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
@@ -123,6 +128,7 @@ class FixationLoop {
   int clear_frames_ = 0;      // frames in a row at or above lock_regain_confidence
   bool confirmed_ = false;    // the lock has been confirmed since the reference or regain
   bool reacquiring_ = false;  // the lock was lost and is not yet regained
+  bool returning_ = false;    // re-acquired, the servos bringing the view back
 };
 
 }  // namespace kapfix

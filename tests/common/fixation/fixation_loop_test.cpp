@@ -107,7 +107,7 @@ TEST(FixationLoopTest, LockIsLostAfterTheConfiguredRunOfUntrustedFrames) {
   EXPECT_DOUBLE_EQ(third.targets.pan_deg, 1.0);  // untrusted: the servos hold
 }
 
-TEST(FixationLoopTest, TrustedFrameEndsARunOfUntrustedOnes) {
+TEST(FixationLoopTest, ARunOfClearFramesEndsARunOfUntrustedOnes) {
   FixationOptions o = Options();
   o.lock_lost_frames = 2;
   FixationLoop loop(o, Pyr(), PlainP(), kLens);
@@ -116,8 +116,28 @@ TEST(FixationLoopTest, TrustedFrameEndsARunOfUntrustedOnes) {
   ConfirmLock(loop, reference);
   const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
   loop.Process(blank, {}, 0.04);
-  loop.Process(reference, {}, 0.04);
+  ConfirmLock(loop, reference);
   EXPECT_FALSE(loop.Process(blank, {}, 0.04).lock_lost);
+}
+
+// A chessboard's slice may give a right match and an ambiguous one frame by frame: single good
+// frames between the bad ones do not keep the lock.
+TEST(FixationLoopTest, GoodFramesBetweenUntrustedOnesDoNotKeepTheLock) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 3;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  ConfirmLock(loop, reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  bool lost = false;
+  for (int k = 0; k < 3; ++k) {
+    lost = loop.Process(blank, {}, 0.04).lock_lost;
+    if (k < 2) {
+      EXPECT_FALSE(loop.Process(reference, {}, 0.04).lock_lost);
+    }
+  }
+  EXPECT_TRUE(lost);
 }
 
 TEST(FixationLoopTest, ALockNotYetConfirmedIsLostAtTheFirstUntrustedFrame) {
@@ -164,6 +184,25 @@ TEST(FixationLoopTest, CleanPhotosKeepTheirLockOverTheSameMoves) {
       EXPECT_TRUE(step.trusted) << name << " dx " << dx;
     }
   }
+}
+
+// Re-acquired far from the reference's view, the loop steers back at once but says the view
+// is held again only once it is within lock_regain_px.
+TEST(FixationLoopTest, AReacquiredViewCountsAsHeldOnlyOnceItIsBack) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 1;
+  o.lock_regain_frames = 1;
+  o.lock_regain_px = 10;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  ASSERT_TRUE(loop.Process(blank, {}, 0.04).lock_lost);
+  const FixationLoop::Step far = loop.Process(testing::Translated(reference, 30, 0), {}, 0.04);
+  EXPECT_TRUE(far.trusted) << "it steers back";
+  EXPECT_TRUE(far.lock_lost) << "but 30 px off is not held";
+  const FixationLoop::Step back = loop.Process(testing::Translated(reference, 4, 0), {}, 0.04);
+  EXPECT_FALSE(back.lock_lost);
 }
 
 TEST(FixationLoopTest, RejectsARegainConfidenceBelowTheLostOne) {
