@@ -103,6 +103,12 @@ class Agent {
   void Stop();
 
   bool simulated() const { return simulated_; }
+  // [deg/px] simulation only: the simulated lens's true degrees per pixel (both axes), what
+  // the flight report compares the online estimate with; none on hardware.
+  std::optional<double> true_deg_per_px() const {
+    if (!platform_) return std::nullopt;
+    return 1.0 / platform_->options().px_per_deg;
+  }
   const TelemetryRecorder& telemetry() const { return telemetry_; }
   std::string Describe() const;  // camera, servos, controller, link on one line
   // Servo hard limits in force (from the config).

@@ -288,7 +288,7 @@ int Main(int argc, char** argv) {
     return 0;
   }
   const auto records = agent->telemetry().records();
-  const FlightFigures figures = ComputeFlightFigures(records, stats);
+  const FlightFigures figures = ComputeFlightFigures(records, stats, agent->true_deg_per_px());
   agent->photos().Flush();  // the photos fired before the end, written
   const PhotoFigures photo_figures = ComputePhotoFigures(agent->photos().Saved());
   const auto number = [](double value) {
@@ -311,8 +311,12 @@ int Main(int argc, char** argv) {
       {"silent_gross_pct", std::isfinite(figures.silent_gross_pct)
                                ? nlohmann::json(figures.silent_gross_pct)
                                : nlohmann::json(nullptr)},
-      // Online calibration of deg/px is not built yet (issue 9): no estimate to compare.
-      {"deg_per_px_estimate_ratio", nullptr},
+      // The online calibration's final estimate ÷ the simulated truth (issue 9); null with
+      // the reason in deg_per_px_estimate_missing.
+      {"deg_per_px_estimate_ratio", number(figures.deg_per_px_estimate_ratio)},
+      {"deg_per_px_estimate_ratio_tilt", number(figures.deg_per_px_estimate_ratio_tilt)},
+      {"deg_per_px_estimate_sigma", number(figures.deg_per_px_estimate_sigma)},
+      {"deg_per_px_estimate_trusted", figures.deg_per_px_estimate_trusted},
       {"world", agent->simulated() ? world.Describe() : std::string("none")},
       {"scene", agent->simulated() ? config.simulation.scene : std::string()},
       {"motion", agent->simulated() ? std::string(ToString(config.simulation.motion)) : "none"},
@@ -331,6 +335,9 @@ int Main(int argc, char** argv) {
       {"photo_wait_s_mean", number(photo_figures.wait_s_mean)},
       {"photo_lock_lost_share", number(photo_figures.lock_lost_share)},
   };
+  if (!figures.deg_per_px_estimate_missing.empty()) {
+    summary["deg_per_px_estimate_missing"] = figures.deg_per_px_estimate_missing;
+  }
   std::cout << summary.dump(2) << std::endl;
   if (!report_dir.empty()) {
     try {

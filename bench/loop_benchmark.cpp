@@ -2,8 +2,8 @@
 // (opencv-doc photos, the chessboard left01.jpg included) × worlds (nominal, each field
 // disturbance alone, realistic) × controllers (P at its best gain found by a sweep per world,
 // PID, predictive — the default) × seeds, flown headless by EvaluateClosedLoop from the first
-// frame (--mode fixate). Prints a table, writes DIR/loop.csv, DIR/loop_heatmap.png and
-// DIR/summary.json. Progress on stderr.
+// frame (--mode fixate) and/or after SSP (--start). Prints a table, writes DIR/loop.csv,
+// DIR/loop_heatmap.png and DIR/summary.json. Progress on stderr.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -56,17 +56,25 @@ std::vector<World> Worlds() {
   return worlds;
 }
 
+// How fixation starts: "first-frame" (--mode fixate) or "ssp" (SSP's slice after its free
+// swing).
+ClosedLoopOptions::Start ParseStart(const std::string& name) {
+  return name == "ssp" ? ClosedLoopOptions::Start::kAfterSsp
+                       : ClosedLoopOptions::Start::kFirstFrame;
+}
+
 struct Run {
-  std::string scene, world, controller;
+  std::string scene, world, controller, start;
   double gain = 1;
   int seed = 1;
   ClosedLoopFigures figures;
 };
 
 ClosedLoopOptions Options(const World& world, const std::string& controller, double gain, int seed,
-                          int frames) {
+                          int frames, const std::string& start) {
   ClosedLoopOptions o;
   o.frames = frames;
+  o.start = ParseStart(start);
   o.world = world.options;
   o.controller = controller;
   if (controller != "predictive") o.gains.p = gain;  // the default controller keeps its gains
@@ -128,6 +136,7 @@ int Main(int argc, char** argv) {
   std::string out_dir = "loop-bench";
   std::vector<std::string> only_worlds, only_scenes, only_controllers;
   bool detail = false, trace = false;
+  std::string start_mode = "first-frame";
   app.add_flag("--quick", quick, "fewer frames and a smaller P-gain sweep (a few minutes)");
   app.add_option("--frames", frames,
                  "frames per flight after the reference (default 500; quick 250)")
@@ -147,8 +156,15 @@ int Main(int argc, char** argv) {
   app.add_flag("--trace", trace,
                "per flight, DIR/trace_WORLD_SCENE_CONTROLLER_GAIN_SEED.csv: one line per frame "
                "(view error, true/believed/commanded servo angles, measured displacement)");
+  app.add_option("--start", start_mode,
+                 "how fixation starts: first-frame (--mode fixate), ssp (after SSP's 300-frame "
+                 "free swing, on its slice) or both")
+      ->check(CLI::IsMember({"first-frame", "ssp", "both"}));
   app.add_option("--out", out_dir, "folder for loop.csv, loop_heatmap.png, summary.json");
   CLI11_PARSE(app, argc, argv);
+  const std::vector<std::string> starts = start_mode == "both"
+                                              ? std::vector<std::string>{"first-frame", "ssp"}
+                                              : std::vector<std::string>{start_mode};
   if (frames == 0) frames = quick ? 200 : 500;
   std::vector<std::string> photos = kPhotos;
   if (!only_scenes.empty()) photos = only_scenes;
@@ -190,26 +206,29 @@ int Main(int argc, char** argv) {
     }
   }
   const std::size_t total =
-      worlds.size() * (sweep_gains.size() * static_cast<std::size_t>(sweep_scenes) +
-                       controllers.size() * photos.size() * static_cast<std::size_t>(seeds));
+      worlds.size() *
+      (sweep_gains.size() * static_cast<std::size_t>(sweep_scenes) +
+       starts.size() * controllers.size() * photos.size() * static_cast<std::size_t>(seeds));
   std::size_t done = 0;
   const auto fly = [&](const std::string& scene, const World& world, const std::string& controller,
-                       double gain, int seed) {
-    Run run{scene,
-            world.name,
-            controller,
-            gain,
-            seed,
-            EvaluateClosedLoop(scenes[scene], Options(world, controller, gain, seed, frames))};
+                       double gain, int seed, const std::string& start) {
+    Run run{
+        scene,
+        world.name,
+        controller,
+        start,
+        gain,
+        seed,
+        EvaluateClosedLoop(scenes[scene], Options(world, controller, gain, seed, frames, start))};
     ++done;
-    std::fprintf(stderr, "\r[%zu/%zu] %-9s %-16s %-10s %4.2f seed %d: %6.2f px   ", done, total,
-                 world.name.c_str(), scene.c_str(), controller.c_str(), gain, seed,
-                 run.figures.rms_error_px);
+    std::fprintf(stderr, "\r[%zu/%zu] %-9s %-16s %-10s %-11s %4.2f seed %d: %6.2f px   ", done,
+                 total, world.name.c_str(), scene.c_str(), controller.c_str(), start.c_str(), gain,
+                 seed, run.figures.rms_error_px);
     if (trace) {
       char gain_text[16];
       std::snprintf(gain_text, sizeof gain_text, "%.2f", gain);
-      WriteTrace(out_dir + "/trace_" + world.name + "_" + scene + "_" + controller + "_" +
-                     gain_text + "_" + std::to_string(seed) + ".csv",
+      WriteTrace(out_dir + "/trace_" + world.name + "_" + scene + "_" + controller + "_" + start +
+                     "_" + gain_text + "_" + std::to_string(seed) + ".csv",
                  run.figures);
     }
     if (detail) {
@@ -238,20 +257,22 @@ int Main(int argc, char** argv) {
     for (const double gain : sweep_gains) {
       std::vector<double> rms;
       for (int s = 0; s < sweep_scenes; ++s) {
-        rms.push_back(
-            fly(photos[static_cast<std::size_t>(s)], world, "p", gain, 1).figures.rms_error_px);
+        rms.push_back(fly(photos[static_cast<std::size_t>(s)], world, "p", gain, 1, "first-frame")
+                          .figures.rms_error_px);
       }
       if (Median(rms) < best) {
         best = Median(rms);
         best_gain[world.name] = gain;
       }
     }
-    for (const std::string& scene : photos) {
-      for (int seed = 1; seed <= seeds; ++seed) {
-        // P at its best gain is what the others are compared with (issue 9); PID starts from
-        // the same gain.
-        for (const std::string& controller : controllers) {
-          runs.push_back(fly(scene, world, controller, best_gain[world.name], seed));
+    for (const std::string& start : starts) {
+      for (const std::string& scene : photos) {
+        for (int seed = 1; seed <= seeds; ++seed) {
+          // P at its best gain is what the others are compared with (issue 9); PID starts
+          // from the same gain.
+          for (const std::string& controller : controllers) {
+            runs.push_back(fly(scene, world, controller, best_gain[world.name], seed, start));
+          }
         }
       }
     }
@@ -261,43 +282,60 @@ int Main(int argc, char** argv) {
   // CSV, one row per flight.
   {
     std::ofstream csv(out_dir + "/loop.csv");
-    csv << "scene,world,controller,p_gain,seed,rms_error_px,p95_error_px,gross_pct,"
+    csv << "scene,world,start,slice,controller,p_gain,seed,rms_error_px,p95_error_px,gross_pct,"
            "silent_gross_pct,lock_lost_pct,dropped_pct\n";
     for (const Run& r : runs) {
       const ClosedLoopFigures& f = r.figures;
-      csv << r.scene << ',' << r.world << ',' << r.controller << ',' << r.gain << ',' << r.seed
-          << ',' << f.rms_error_px << ',' << f.p95_error_px << ',' << f.gross_pct << ','
-          << f.silent_gross_pct << ',' << f.lock_lost_pct << ',' << f.dropped_pct << '\n';
+      csv << r.scene << ',' << r.world << ',' << r.start << ',' << f.slice << ',' << r.controller
+          << ',' << r.gain << ',' << r.seed << ',' << f.rms_error_px << ',' << f.p95_error_px << ','
+          << f.gross_pct << ',' << f.silent_gross_pct << ',' << f.lock_lost_pct << ','
+          << f.dropped_pct << '\n';
     }
   }
 
-  // Per scene and world: the mean over seeds of each controller's RMS.
+  // One table row per world and start: "nominal" from the first frame, "nominal/ssp" after SSP.
+  struct Row {
+    std::string label, world;
+  };
+  const auto label_of = [](const std::string& world, const std::string& start) {
+    return start == "ssp" ? world + "/ssp" : world;
+  };
+  std::vector<Row> rows;
+  for (const World& world : worlds) {
+    for (const std::string& start : starts)
+      rows.push_back({label_of(world.name, start), world.name});
+  }
+  // Per scene and row: the mean over seeds of each controller's RMS.
   std::map<std::string, std::map<std::string, std::map<std::string, std::vector<double>>>> rms;
-  std::map<std::string, double> worst_silent;  // per world, over scenes and seeds
+  std::map<std::string, std::map<std::string, std::vector<double>>> gross_by_scene, silent_by_scene;
+  std::map<std::string, double> worst_silent;  // per row, over scenes and seeds
   std::map<std::string, std::vector<double>> p95_by_world, gross_by_world, ratio_by_world;
   for (const Run& r : runs) {
-    rms[r.world][r.scene][r.controller].push_back(r.figures.rms_error_px);
+    const std::string row = label_of(r.world, r.start);
+    rms[row][r.scene][r.controller].push_back(r.figures.rms_error_px);
     if (r.controller == "predictive") {
-      worst_silent[r.world] = std::max(worst_silent[r.world], r.figures.silent_gross_pct);
-      p95_by_world[r.world].push_back(r.figures.p95_error_px);
-      gross_by_world[r.world].push_back(r.figures.gross_pct);
-      ratio_by_world[r.world].push_back(r.figures.deg_per_px_estimate_ratio);
+      worst_silent[row] = std::max(worst_silent[row], r.figures.silent_gross_pct);
+      p95_by_world[row].push_back(r.figures.p95_error_px);
+      gross_by_world[row].push_back(r.figures.gross_pct);
+      gross_by_scene[row][r.scene].push_back(r.figures.gross_pct);
+      silent_by_scene[row][r.scene].push_back(r.figures.silent_gross_pct);
+      ratio_by_world[row].push_back(r.figures.deg_per_px_estimate_ratio);
     }
   }
   std::printf("%d frames, %d seeds, P gain swept over", frames, seeds);
   for (const double g : sweep_gains) std::printf(" %.2f", g);
   std::printf(" on %d scenes\n\n", sweep_scenes);
-  std::printf("%-10s %7s | %9s %9s %9s | %12s %11s | %10s %8s | %9s\n", "world", "P gain",
+  std::printf("%-14s %7s | %9s %9s %9s | %12s %11s | %10s %8s | %9s\n", "world", "P gain",
               "pred_px", "P*_px", "pid_px", "worst pred/P", "(scene)", "max silent", "gross%",
               "deg/px ×");
   std::vector<double> heat;
   nlohmann::json per_world = nlohmann::json::object();
-  for (const World& world : worlds) {
+  for (const Row& row : rows) {
     std::vector<double> pred, p, pid;
     double worst = 0;
     std::string worst_scene;
     for (const std::string& scene : photos) {
-      auto& c = rms[world.name][scene];
+      auto& c = rms[row.label][scene];
       pred.push_back(Mean(c["predictive"]));
       p.push_back(Mean(c["p"]));
       pid.push_back(Mean(c["pid"]));
@@ -307,35 +345,48 @@ int Main(int argc, char** argv) {
         worst_scene = scene;
       }
     }
-    std::printf("%-10s %7.2f | %9.2f %9.2f %9.2f | %12.2f %11s | %10.2f %8.2f | %9.3f\n",
-                world.name.c_str(), best_gain[world.name], Median(pred), Median(p), Median(pid),
-                worst, worst_scene.c_str(), worst_silent[world.name],
-                Median(gross_by_world[world.name]), Median(ratio_by_world[world.name]));
-    per_world[world.name] = {
-        {"p_best_gain", best_gain[world.name]},
+    std::printf("%-14s %7.2f | %9.2f %9.2f %9.2f | %12.2f %11s | %10.2f %8.2f | %9.3f\n",
+                row.label.c_str(), best_gain[row.world], Median(pred), Median(p), Median(pid),
+                worst, worst_scene.c_str(), worst_silent[row.label],
+                Median(gross_by_world[row.label]), Median(ratio_by_world[row.label]));
+    per_world[row.label] = {
+        {"p_best_gain", best_gain[row.world]},
         {"median_rms_error_px", Median(pred)},
         {"median_rms_error_px_p_best", Median(p)},
         {"median_rms_error_px_pid", Median(pid)},
         {"worst_ratio_to_p_best", worst},
         {"worst_ratio_scene", worst_scene},
-        {"p95_error_px", Median(p95_by_world[world.name])},
-        {"gross_pct", Median(gross_by_world[world.name])},
-        {"silent_gross_pct", worst_silent[world.name]},
-        {"deg_per_px_estimate_ratio", Median(ratio_by_world[world.name])},
-        {"deg_per_px_estimate_ratio_min", Lowest(ratio_by_world[world.name])},
-        {"deg_per_px_estimate_ratio_max", -Lowest(Negated(ratio_by_world[world.name]))}};
+        {"p95_error_px", Median(p95_by_world[row.label])},
+        {"gross_pct", Median(gross_by_world[row.label])},
+        {"silent_gross_pct", worst_silent[row.label]},
+        {"deg_per_px_estimate_ratio", Median(ratio_by_world[row.label])},
+        {"deg_per_px_estimate_ratio_min", Lowest(ratio_by_world[row.label])},
+        {"deg_per_px_estimate_ratio_max", -Lowest(Negated(ratio_by_world[row.label]))}};
   }
   std::printf("\npredictive RMS [px] per scene (mean over seeds):\n%-17s", "scene");
-  for (const World& world : worlds) std::printf(" %9s", world.name.c_str());
+  for (const Row& row : rows) std::printf(" %14s", row.label.c_str());
   std::printf("\n");
   std::vector<std::string> world_names;
-  for (const World& world : worlds) world_names.push_back(world.name);
+  for (const Row& row : rows) world_names.push_back(row.label);
   for (const std::string& scene : photos) {
     std::printf("%-17s", scene.c_str());
-    for (const World& world : worlds) {
-      const double v = Mean(rms[world.name][scene]["predictive"]);
+    for (const Row& row : rows) {
+      const double v = Mean(rms[row.label][scene]["predictive"]);
       heat.push_back(v);
-      std::printf(" %9.2f", v);
+      std::printf(" %14.2f", v);
+    }
+    std::printf("\n");
+  }
+  // The lock's honesty per scene (issue 9): gross_pct / silent_gross_pct of the predictive
+  // controller, mean over seeds.
+  std::printf("\npredictive gross%% / silent gross%% per scene (mean over seeds):\n%-17s", "scene");
+  for (const Row& row : rows) std::printf(" %14s", row.label.c_str());
+  std::printf("\n");
+  for (const std::string& scene : photos) {
+    std::printf("%-17s", scene.c_str());
+    for (const Row& row : rows) {
+      std::printf("  %5.1f / %5.2f", Mean(gross_by_scene[row.label][scene]),
+                  Mean(silent_by_scene[row.label][scene]));
     }
     std::printf("\n");
   }
@@ -344,8 +395,10 @@ int Main(int argc, char** argv) {
                                   photos, world_names, heat, 1.0, 100.0));
   // The issue's keys, for the realistic world (the default controller); the online
   // calibration's ratio is the median over its flights of the final estimate ÷ the truth.
+  // (From the first frame when it was flown, else after SSP.)
+  const std::string realistic_row = per_world.contains("realistic") ? "realistic" : "realistic/ssp";
   const nlohmann::json realistic =
-      per_world.contains("realistic") ? per_world["realistic"] : nlohmann::json::object();
+      per_world.contains(realistic_row) ? per_world[realistic_row] : nlohmann::json::object();
   nlohmann::json summary = {
       {"frames", frames},
       {"seeds", seeds},
@@ -353,6 +406,7 @@ int Main(int argc, char** argv) {
       {"gross_pct", realistic.value("gross_pct", nlohmann::json())},
       {"silent_gross_pct", realistic.value("silent_gross_pct", nlohmann::json())},
       {"deg_per_px_estimate_ratio", realistic.value("deg_per_px_estimate_ratio", nlohmann::json())},
+      {"start", start_mode},
       {"worlds", per_world}};
   std::ofstream(out_dir + "/summary.json") << summary.dump(2) << '\n';
   std::printf("\nwrote %s/loop.csv, %s/loop_heatmap.png, %s/summary.json\n", out_dir.c_str(),

@@ -92,6 +92,17 @@ kapfix::v1::Telemetry TelemetryPublisher::ToMessage(const TelemetryRecord& recor
   t.set_slice(static_cast<std::uint32_t>(record.slice));
   *t.mutable_camera_health() = ToProto(record.camera_health);
   *t.mutable_servo_health() = ToProto(record.servo_health);
+  if (record.estimate) {
+    const ControlEstimate& e = *record.estimate;
+    auto* deg_per_px = t.mutable_deg_per_px();
+    deg_per_px->set_pan_deg_per_px(static_cast<float>(e.pan.deg_per_px));
+    deg_per_px->set_tilt_deg_per_px(static_cast<float>(e.tilt.deg_per_px));
+    deg_per_px->set_pan_uncertainty(static_cast<float>(e.pan.relative_sigma));
+    deg_per_px->set_tilt_uncertainty(static_cast<float>(e.tilt.relative_sigma));
+    // The controller acts on the estimate only where it trusts it: both axes, to say so.
+    deg_per_px->set_trusted(e.pan.trusted && e.tilt.trusted);
+    t.set_forecast_weight(static_cast<float>(e.forecast_weight()));
+  }
   return t;
 }
 

@@ -16,13 +16,41 @@
 #include "common/plot/line_plot.hpp"
 
 namespace kapfix::agent {
-namespace {}  // namespace
+namespace {
 
 // [px] a true view error beyond this is gross (issue 9).
 constexpr double kGrossErrorPx = 10;
 
+// The online calibration at the flight's end against the truth (issue 9).
+void FillCalibrationEstimate(const std::vector<TelemetryRecord>& records,
+                             std::optional<double> true_deg_per_px, FlightFigures* f) {
+  const TelemetryRecord* last = nullptr;  // the last fixating frame
+  for (const TelemetryRecord& r : records) {
+    if (r.reference_frame) last = &r;
+  }
+  if (last == nullptr) {
+    f->deg_per_px_estimate_missing = "no fixating frame";
+    return;
+  }
+  if (!last->estimate) {
+    f->deg_per_px_estimate_missing = "the controller keeps no online deg/px estimate";
+    return;
+  }
+  f->deg_per_px_estimate_sigma = last->estimate->pan.relative_sigma;
+  f->deg_per_px_estimate_trusted = last->estimate->pan.trusted && last->estimate->tilt.trusted;
+  if (!true_deg_per_px || !(*true_deg_per_px > 0)) {
+    f->deg_per_px_estimate_missing = "not simulated: the true deg/px is unknown";
+    return;
+  }
+  f->deg_per_px_estimate_ratio = last->estimate->pan.deg_per_px / *true_deg_per_px;
+  f->deg_per_px_estimate_ratio_tilt = last->estimate->tilt.deg_per_px / *true_deg_per_px;
+}
+
+}  // namespace
+
 FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
-                                   const PipelineStats& stats) {
+                                   const PipelineStats& stats,
+                                   std::optional<double> true_deg_per_px) {
   FlightFigures f;
   f.frames = records.size();
   f.fps = stats.wall_s > 0 ? static_cast<double>(stats.processed) / stats.wall_s : 0.0;
@@ -70,6 +98,7 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   f.loop_latency_p50_ms = latency.empty() ? 0.0 : Percentile(latency, 50.0);
   f.loop_latency_p99_ms = latency.empty() ? 0.0 : Percentile(latency, 99.0);
   f.rss_mb = PeakRssMb();
+  FillCalibrationEstimate(records, true_deg_per_px, &f);
   return f;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,10 +28,22 @@ struct FlightFigures {
   double loop_latency_p50_ms = 0;  // [ms]
   double loop_latency_p99_ms = 0;  // [ms]
   double rss_mb = 0;               // [MB] peak resident set (VmHWM), 0 when unknown
+  // [1] the controller's online deg/px estimate at the flight's end (its last fixating frame)
+  // ÷ the true value, per axis (1 = perfect), with its relative standard deviation and
+  // whether the controller acted on it. NaN when there is nothing to compare: then
+  // deg_per_px_estimate_missing says why (no truth outside simulation, a controller without
+  // an online estimate, no fixating frame).
+  double deg_per_px_estimate_ratio = std::numeric_limits<double>::quiet_NaN();
+  double deg_per_px_estimate_ratio_tilt = std::numeric_limits<double>::quiet_NaN();
+  double deg_per_px_estimate_sigma = std::numeric_limits<double>::quiet_NaN();
+  bool deg_per_px_estimate_trusted = false;
+  std::string deg_per_px_estimate_missing;
 };
 
+// `true_deg_per_px` [deg/px]: the lens's true degrees per pixel, known in simulation only.
 FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
-                                   const PipelineStats& stats);
+                                   const PipelineStats& stats,
+                                   std::optional<double> true_deg_per_px = std::nullopt);
 
 // [MB] VmHWM of /proc/self/status; 0 when it cannot be read.
 double PeakRssMb();

@@ -239,6 +239,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     record.slice = outcome.slice;
     record.distance = step.match.distance;
     record.reference_frame = outcome.reference_frame;
+    record.estimate = step.estimate;
     const DevicesHealth devices = health();
     record.camera_health = devices.camera;
     record.servo_health = devices.servos;

@@ -5,6 +5,7 @@
 
 #include "agent/modes/agent_mode.hpp"
 #include "agent/pipeline/device_health.hpp"
+#include "common/control/controller.hpp"
 
 namespace kapfix::agent {
 
@@ -31,6 +32,9 @@ struct TelemetryRecord {
   // [px] simulation only: the view's true residual offset from the reference frame's view.
   std::optional<double> view_offset_x_px;
   std::optional<double> view_offset_y_px;
+  // The controller's online deg/px estimate and forecast weight after this step (issue 9);
+  // none for a controller that does not learn in flight, or outside fixation.
+  std::optional<ControlEstimate> estimate;
 };
 
 }  // namespace kapfix::agent

@@ -29,7 +29,8 @@ std::string TelemetryRecorder::ToCsv(const std::vector<TelemetryRecord>& records
   csv.precision(8);
   csv << "index,capture_time_us,found,displacement_x_px,displacement_y_px,confidence,lock_lost,"
          "target_pan_deg,target_tilt_deg,angle_pan_deg,angle_tilt_deg,loop_latency_ms,"
-         "mode,slice,view_offset_x_px,view_offset_y_px\n";
+         "mode,slice,view_offset_x_px,view_offset_y_px,pan_deg_per_px,pan_deg_per_px_sigma,"
+         "tilt_deg_per_px,tilt_deg_per_px_sigma,deg_per_px_trusted,forecast_weight\n";
   for (const TelemetryRecord& r : records) {
     csv << r.index << ',' << r.capture_time_us << ',' << (r.found ? 1 : 0) << ','
         << r.displacement_x_px << ',' << r.displacement_y_px << ',' << r.confidence << ','
@@ -39,6 +40,15 @@ std::string TelemetryRecorder::ToCsv(const std::vector<TelemetryRecord>& records
     if (r.view_offset_x_px) csv << *r.view_offset_x_px;
     csv << ',';
     if (r.view_offset_y_px) csv << *r.view_offset_y_px;
+    // Empty cells for a controller without an online estimate.
+    if (r.estimate) {
+      const ControlEstimate& e = *r.estimate;
+      csv << ',' << e.pan.deg_per_px << ',' << e.pan.relative_sigma << ',' << e.tilt.deg_per_px
+          << ',' << e.tilt.relative_sigma << ',' << (e.pan.trusted && e.tilt.trusted ? 1 : 0) << ','
+          << e.forecast_weight();
+    } else {
+      csv << ",,,,,";
+    }
     csv << '\n';
   }
   return csv.str();

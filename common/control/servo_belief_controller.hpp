@@ -28,6 +28,7 @@ class ServoBeliefController final : public Controller {
   std::string name() const override { return controller_->name(); }
   void SetCalibration(const LensCalibration& calibration) override;
   void SetGains(const ControllerGains& gains) override { controller_->SetGains(gains); }
+  std::optional<ControlEstimate> estimate() const override { return controller_->estimate(); }
 
   const Controller& controller() const { return *controller_; }
 

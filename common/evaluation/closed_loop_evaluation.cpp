@@ -9,6 +9,7 @@
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
 #include "common/control/servo_belief_controller.hpp"
+#include "common/evaluation/free_swing_slice.hpp"
 
 namespace kapfix {
 namespace {
@@ -55,6 +56,9 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     return fail("calibration scale must be > 0, got " + std::to_string(calibration_scale));
   }
   if (frames < 1) return fail("closed loop needs ≥ 1 frame, got " + std::to_string(frames));
+  if (start == Start::kAfterSsp && ssp_frames < 2) {
+    return fail("SSP before fixation needs ≥ 2 frames, got " + std::to_string(ssp_frames));
+  }
   if (!std::isfinite(frame_period_s) || frame_period_s <= 0) {
     return fail("frame period must be > 0 s, got " + std::to_string(frame_period_s));
   }
@@ -107,6 +111,13 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   std::unique_ptr<Controller> controller = MakeController(
       options.controller, options.gains, calibration, EffectivePredictive(options), &error);
   const auto* predictive = dynamic_cast<const PredictiveController*>(controller.get());
+  const std::shared_ptr<const SearchStrategy> strategy =
+      MakeSearchStrategy(options.strategy, &error);
+  FixationOptions fixation = options.fixation;
+  if (options.start == ClosedLoopOptions::Start::kAfterSsp) {
+    fixation.slice = FreeSwingSlice(platform, fixation, *strategy, options.ssp_frames);
+    platform.Step();
+  }
   // What the controller believes the servos show: built from the commands sent, never from
   // the servos' true output angles (those stay the simulation's), and resolved from each
   // frame's measurement when the latency jitters (ServoBelief).
@@ -116,7 +127,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
       1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames),
       initial});
   FixationLoop loop(
-      options.fixation, MakeSearchStrategy(options.strategy, &error),
+      fixation, strategy,
       std::make_unique<ServoBeliefController>(std::move(controller), belief, calibration),
       calibration);
   // The driver also keeps each command within the servo's rated speed of the previous one,
@@ -142,16 +153,18 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   };
   // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
   // controller's history starts there, as the agent's does when it fixates mid-stream.
+  const cv::Point2d held = platform.ViewOffset();  // [px] the reference's view
   {
     const SimulatedFrame reference = platform.CaptureFrame();
     loop.SetReference(reference.image);
     const FixationLoop::Step step =
-        loop.Process(reference.image, belief->Expose(0), options.frame_period_s);
-    command(0, step.targets);
+        loop.Process(reference.image, belief->Expose(reference.frame), options.frame_period_s);
+    command(reference.frame, step.targets);
   }
 
   ClosedLoopFigures figures;
   figures.frames = options.frames;
+  figures.slice = fixation.slice;
   std::vector<double> loop_us;
   loop_us.reserve(static_cast<std::size_t>(options.frames));
   std::vector<double> errors;
@@ -164,7 +177,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   for (int i = 0; i < options.frames; ++i) {
     platform.Step();
     const SimulatedFrame frame = platform.CaptureFrame();
-    const cv::Point2d offset = platform.ViewOffset();  // of the frame just captured
+    const cv::Point2d offset = platform.ViewOffset() - held;  // of the frame just captured
     const cv::Point2d open = platform.OpenLoopOffset();
     figures.view_offsets.push_back(offset);
     figures.angles.push_back({frame.pan_deg, frame.tilt_deg});

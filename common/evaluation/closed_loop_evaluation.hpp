@@ -50,6 +50,12 @@ struct ClosedLoopOptions {
   // The field's disturbances (issue 9), applied to `platform` by EvaluateClosedLoop; the
   // default is the nominal world (the platform options as they are).
   WorldOptions world;
+  // How fixation starts (issue 9: both count): from the first frame, as `--mode fixate`, or
+  // after SSP: the servos hold through ssp_frames of free swing (FreeSwingSlice), the loop
+  // fixates the slice SSP recommends, and the frame after the swing becomes the reference.
+  enum class Start { kFirstFrame, kAfterSsp };
+  Start start = Start::kFirstFrame;
+  int ssp_frames = 300;          // [frames] the free swing (the agent's default SSP deadline)
   int frames = 600;              // frames processed after the reference frame
   double frame_period_s = 0.04;  // [s] dt handed to the controller (25 frames/s)
 
@@ -81,6 +87,7 @@ struct ClosedLoopFigures {
   // itself the matcher is (motion blur smears without moving the minimum).
   double confidence_loss = 0;
   int frames = 0;
+  int slice = 0;   // the slice fixated (options.fixation's, or SSP's choice)
   double fps = 0;  // frames per wall-clock second of Process()
   double loop_latency_p50_ms = 0, loop_latency_p99_ms = 0;  // [ms] of Process()
   // [1] the predictive controller's final online estimate of the pan axis's deg per px ÷ the
@@ -97,7 +104,8 @@ struct ClosedLoopFigures {
   std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
 };
 
-// Runs the loop: frame 0 becomes the reference; then per frame Step (servos act),
+// Runs the loop: frame 0 (after SSP: the frame after the free swing) becomes the reference,
+// and view errors are taken against its view; then per frame Step (servos act),
 // CaptureFrame, FixationLoop::Process, and the targets are commanded. The controller is
 // never told the servos' true angles, which a hobby servo cannot report: it gets the command
 // that should have taken effect by the frame's capture (the one sent 1 + the servo's nominal

@@ -25,7 +25,9 @@ struct FixationOptions {
   int slice = 5;         // 1 = top … slice_count; SSP chooses it
   // A frame whose match confidence is below this (or that found no match) is not trusted:
   // the controller gets it as not found. After lock_lost_frames such frames in a row the
-  // lock is reported lost (the agent then re-runs SSP, SPEC §2.6).
+  // lock is reported lost (the agent then re-runs SSP, SPEC §2.6); before the lock is
+  // confirmed (see lock_regain_confidence), after the first. Only lock_regain_frames clear
+  // frames in a row end such a run: single good frames between bad ones do not.
   // MatchConfidence sees a repetitive texture's rival (issue 9): below this the match is
   // ambiguous or poor and must not steer the servos.
   double lock_lost_confidence = 0.2;
@@ -36,6 +38,17 @@ struct FixationOptions {
   // in a row (a single lucky frame on a repetitive texture must not snap to a neighbour).
   double reacquire_range_factor = 2.0;
   int lock_regain_frames = 3;
+  // A lock is confirmed (after the reference, or when re-acquired) only by lock_regain_frames
+  // frames in a row at or above this confidence, a margin above lock_lost_confidence
+  // (hysteresis): on a repetitive texture the confidence hovers around the trust threshold
+  // (building.jpg: 0.05-0.3, clean photos 0.4-0.8) and a lock made of frames that barely pass
+  // it is not one. Until the lock is confirmed there is no grace: the first untrusted frame
+  // reports the lock lost, so that a view that never really locked is never held silently.
+  double lock_regain_confidence = 0.4;
+  // [px] A re-acquired reference steers the servos back at once, but the lock counts as held
+  // again (lock_lost false) only once the measured displacement is within this: found 60 px
+  // away, the view is not held yet (stored reference only; follow has no such view).
+  double lock_regain_px = 10;
   enum class Reference {
     kStored,    // fixate: every frame is compared with the reference stored by SetReference
     kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
@@ -86,6 +99,9 @@ class FixationLoop {
     bool trusted = false;
     bool reacquiring = false;  // the search was widened around the stored reference
     double loop_us = 0;        // [µs] wall time of this Process call
+    // What the controller believes after this frame (online deg/px, forecast weight), for
+    // telemetry and the flight report; none for a controller that does not learn in flight.
+    std::optional<ControlEstimate> estimate;
   };
   // `current`: the servo angles `frame_bgr` was captured through; `dt_s`: time since the
   // previous frame. Without a reference the servos hold and the lock is reported lost.
@@ -109,8 +125,10 @@ class FixationLoop {
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
   int untrusted_frames_ = 0;
-  int trusted_frames_ = 0;    // confident frames in a row
+  int clear_frames_ = 0;      // frames in a row at or above lock_regain_confidence
+  bool confirmed_ = false;    // the lock has been confirmed since the reference or regain
   bool reacquiring_ = false;  // the lock was lost and is not yet regained
+  bool returning_ = false;    // re-acquired, the servos bringing the view back
 };
 
 }  // namespace kapfix

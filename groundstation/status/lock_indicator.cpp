@@ -50,6 +50,10 @@ void LockIndicator::showReading() {
     text += size_ == Size::kOnVideo ? QStringLiteral("\n") : QStringLiteral("  ");
     text +=
         tr("%1 px · RMS %2 px").arg(reading.residual_px, 0, 'f', 1).arg(reading.rms_px, 0, 'f', 1);
+    // The online calibration in the status bar only: the video's label stays short.
+    if (size_ == Size::kStatusBar && !reading.calibration.empty()) {
+      text += QStringLiteral("  ") + QString::fromStdString(reading.calibration);
+    }
   }
   if (monitor_.stale()) {
     // The last value heard, not the present one: grey, and said in words.

@@ -1,6 +1,7 @@
 #include "groundstation/status/lock_quality.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace kapfix::station {
 namespace {
@@ -85,6 +86,23 @@ const LockReading& LockQuality::add(const kapfix::v1::Telemetry& telemetry) {
     reading_.verdict = LockVerdict::kDegraded;
   } else {
     reading_.verdict = LockVerdict::kLocked;
+  }
+  reading_.calibration.clear();
+  if (Tracking(mode_) && telemetry.has_deg_per_px()) {
+    const auto& e = telemetry.deg_per_px();
+    const double sigma_pct = 100.0 * e.pan_uncertainty();
+    char text[96];
+    if (std::isfinite(sigma_pct)) {
+      std::snprintf(text, sizeof text, "deg/px %.4f ±%.0f %% %s · forecast %.0f %%",
+                    static_cast<double>(e.pan_deg_per_px()), sigma_pct,
+                    e.trusted() ? "trusted" : "not trusted",
+                    100.0 * static_cast<double>(telemetry.forecast_weight()));
+    } else {
+      std::snprintf(text, sizeof text, "deg/px %.4f (no fit yet) · forecast %.0f %%",
+                    static_cast<double>(e.pan_deg_per_px()),
+                    100.0 * static_cast<double>(telemetry.forecast_weight()));
+    }
+    reading_.calibration = text;
   }
   return reading_;
 }

@@ -30,5 +30,18 @@ TEST(CtlMessageTextTest, TelemetrySaysTheDevicesStatus) {
   EXPECT_THAT(TelemetryText(telemetry), HasSubstr(" camera=ok servos=lost"));
 }
 
+TEST(CtlMessageTextTest, TelemetrySaysTheOnlineCalibrationWhenThereIsOne) {
+  kapfix::v1::Telemetry telemetry;
+  EXPECT_THAT(TelemetryText(telemetry), ::testing::Not(HasSubstr("deg_per_px=")));
+  telemetry.mutable_deg_per_px()->set_pan_deg_per_px(0.25f);
+  telemetry.mutable_deg_per_px()->set_tilt_deg_per_px(0.5f);
+  telemetry.mutable_deg_per_px()->set_pan_uncertainty(0.125f);
+  telemetry.mutable_deg_per_px()->set_trusted(true);
+  telemetry.set_forecast_weight(0.75f);
+  EXPECT_THAT(TelemetryText(telemetry),
+              HasSubstr(" deg_per_px=0.25/0.5 uncertainty=0.125/0 deg_per_px_trusted=1 "
+                        "forecast_weight=0.75"));
+}
+
 }  // namespace
 }  // namespace kapfix::ctl

@@ -115,6 +115,14 @@ std::string TelemetryText(const kapfix::v1::Telemetry& telemetry) {
       << " video_frames_dropped=" << telemetry.video_frames_dropped()
       << " camera=" << DeviceHealthWord(telemetry.camera_health().status())
       << " servos=" << DeviceHealthWord(telemetry.servo_health().status());
+  // The online calibration (issue 9), when the controller keeps one.
+  if (telemetry.has_deg_per_px()) {
+    const auto& e = telemetry.deg_per_px();
+    out << " deg_per_px=" << e.pan_deg_per_px() << "/" << e.tilt_deg_per_px()
+        << " uncertainty=" << e.pan_uncertainty() << "/" << e.tilt_uncertainty()
+        << " deg_per_px_trusted=" << (e.trusted() ? 1 : 0)
+        << " forecast_weight=" << telemetry.forecast_weight();
+  }
   return out.str();
 }
 

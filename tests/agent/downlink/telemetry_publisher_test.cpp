@@ -33,6 +33,36 @@ TEST(TelemetryPublisherTest, EveryMessageCarriesTheDevicesHealth) {
   EXPECT_TRUE(t.SerializeToString(&bytes));
 }
 
+TEST(TelemetryPublisherTest, TheOnlineDegPerPxEstimateAndForecastWeightAreCarried) {
+  TelemetryRecord record;
+  ControlEstimate e;
+  e.pan = {0.105, 0.03, true, 0.8};
+  e.tilt = {0.095, 0.05, true, 0.6};
+  record.estimate = e;
+  const kapfix::v1::Telemetry t = TelemetryPublisher::ToMessage(record, 0, 0, 0);
+  ASSERT_TRUE(t.has_deg_per_px());
+  EXPECT_FLOAT_EQ(t.deg_per_px().pan_deg_per_px(), 0.105f);
+  EXPECT_FLOAT_EQ(t.deg_per_px().tilt_deg_per_px(), 0.095f);
+  EXPECT_FLOAT_EQ(t.deg_per_px().pan_uncertainty(), 0.03f);
+  EXPECT_FLOAT_EQ(t.deg_per_px().tilt_uncertainty(), 0.05f);
+  EXPECT_TRUE(t.deg_per_px().trusted());
+  EXPECT_FLOAT_EQ(t.forecast_weight(), 0.7f);
+}
+
+TEST(TelemetryPublisherTest, AnEstimateTrustedOnOneAxisOnlyIsNotTrusted) {
+  TelemetryRecord record;
+  ControlEstimate e;
+  e.pan.trusted = true;
+  record.estimate = e;
+  EXPECT_FALSE(TelemetryPublisher::ToMessage(record, 0, 0, 0).deg_per_px().trusted());
+}
+
+TEST(TelemetryPublisherTest, AControllerWithoutAnEstimateSendsNone) {
+  const kapfix::v1::Telemetry t = TelemetryPublisher::ToMessage(TelemetryRecord{}, 0, 0, 0);
+  EXPECT_FALSE(t.has_deg_per_px());
+  EXPECT_FLOAT_EQ(t.forecast_weight(), 0.0f);
+}
+
 TEST(TelemetryPublisherTest, DisplacementIsSplitIntoWholeAndSubPixelParts) {
   TelemetryRecord record;
   record.displacement_x_px = 3.25;

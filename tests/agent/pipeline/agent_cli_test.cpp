@@ -64,6 +64,9 @@ TEST(AgentCliTest, SimFlightWritesTheReport) {
   EXPECT_EQ(json["controller"], "predictive");
   EXPECT_EQ(json["motion"], "kite");
   EXPECT_TRUE(json["rms_error_px"].is_number());
+  // The predictive controller's online calibration against the simulated truth (issue 9).
+  EXPECT_TRUE(json["deg_per_px_estimate_ratio"].is_number()) << json.dump();
+  EXPECT_FALSE(json.contains("deg_per_px_estimate_missing")) << json.dump();
   EXPECT_GT(json["rss_mb"].get<double>(), 0.0);
   EXPECT_GT(json["fps"].get<double>(), 0.0);
   EXPECT_TRUE(std::filesystem::is_regular_file(report / "telemetry.csv"));

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "agent/agent.hpp"
 #include "agent/pipeline/flight_report.hpp"
@@ -33,7 +34,8 @@ constexpr AgentOptions Fast(std::uint64_t frames) {
   return {.simulate = true, .real_time = false, .frames = frames};
 }
 
-FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
+FlightFigures Fly(const AgentConfig& config, std::uint64_t frames,
+                  std::vector<TelemetryRecord>* kept = nullptr) {
   AgentOptions options = Fast(frames);
   options.keep_telemetry = true;
   options.resume = false;  // each flight from its configuration, not from the previous one's
@@ -50,7 +52,8 @@ FlightFigures Fly(const AgentConfig& config, std::uint64_t frames) {
     EXPECT_LE(r.angle_tilt_deg, agent.limits(ServoAxis::kTilt).max_deg);
     EXPECT_TRUE(r.view_offset_x_px.has_value());
   }
-  return ComputeFlightFigures(records, stats);
+  if (kept) *kept = records;
+  return ComputeFlightFigures(records, stats, agent.true_deg_per_px());
 }
 
 TEST(SimFlightTest, PredictiveHoldsTheKiteViewWithinFivePixels) {
@@ -58,6 +61,27 @@ TEST(SimFlightTest, PredictiveHoldsTheKiteViewWithinFivePixels) {
   EXPECT_EQ(f.frames, 200u);
   EXPECT_LT(f.rms_error_px, 5.0);
   EXPECT_LT(f.lock_lost_pct, 5.0);
+}
+
+// The online deg/px estimate travels from the controller through every fixating step's record
+// into the report (issue 9): in simulation its ratio to the truth is a number near 1, the
+// lens being exactly calibrated.
+TEST(SimFlightTest, TheOnlineDegPerPxEstimateReachesTheReport) {
+  std::vector<TelemetryRecord> records;
+  const FlightFigures f = Fly(KiteConfig(ControllerKind::kPredictive), 200, &records);
+  ASSERT_TRUE(std::isfinite(f.deg_per_px_estimate_ratio)) << f.deg_per_px_estimate_missing;
+  EXPECT_NEAR(f.deg_per_px_estimate_ratio, 1.0, 0.15);
+  EXPECT_NEAR(f.deg_per_px_estimate_ratio_tilt, 1.0, 0.15);
+  EXPECT_TRUE(f.deg_per_px_estimate_missing.empty());
+  ASSERT_FALSE(records.empty());
+  EXPECT_TRUE(records.back().estimate.has_value());
+}
+
+TEST(SimFlightTest, PKeepsNoEstimateAndTheReportSaysWhy) {
+  const FlightFigures f = Fly(KiteConfig(ControllerKind::kP), 60);
+  EXPECT_TRUE(std::isnan(f.deg_per_px_estimate_ratio));
+  EXPECT_NE(f.deg_per_px_estimate_missing.find("no online deg/px estimate"), std::string::npos)
+      << f.deg_per_px_estimate_missing;
 }
 
 TEST(SimFlightTest, ServosActuallyMove) {

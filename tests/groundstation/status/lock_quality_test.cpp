@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 namespace kapfix::station {
@@ -77,6 +78,20 @@ TEST(LockQuality, OptionsRefuseThresholdsInTheWrongOrder) {
   options.lost_rms_px = 2;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("lost_rms_px"), std::string::npos);
+}
+
+TEST(LockQuality, SaysTheOnlineCalibrationAndTheForecastShare) {
+  LockQuality quality;
+  kapfix::v1::Telemetry t = Sample(0, 1.0);
+  EXPECT_TRUE(quality.add(t).calibration.empty()) << "no estimate, nothing to say";
+  t.mutable_deg_per_px()->set_pan_deg_per_px(0.105F);
+  t.mutable_deg_per_px()->set_pan_uncertainty(0.03F);
+  t.mutable_deg_per_px()->set_trusted(true);
+  t.set_forecast_weight(0.8F);
+  EXPECT_EQ(quality.add(t).calibration, "deg/px 0.1050 ±3 % trusted · forecast 80 %");
+  t.mutable_deg_per_px()->set_trusted(false);
+  t.mutable_deg_per_px()->set_pan_uncertainty(std::numeric_limits<float>::infinity());
+  EXPECT_EQ(quality.add(t).calibration, "deg/px 0.1050 (no fit yet) · forecast 80 %");
 }
 
 }  // namespace
