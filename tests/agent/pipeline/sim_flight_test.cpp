@@ -68,7 +68,7 @@ TEST(SimFlightTest, PredictiveHoldsTheKiteViewWithinFivePixels) {
 // lens being exactly calibrated.
 TEST(SimFlightTest, TheOnlineDegPerPxEstimateReachesTheReport) {
   std::vector<TelemetryRecord> records;
-  const FlightFigures f = Fly(KiteConfig(ControllerKind::kPredictive), 200, &records);
+  const FlightFigures f = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_PREDICTIVE), 200, &records);
   ASSERT_TRUE(std::isfinite(f.deg_per_px_estimate_ratio)) << f.deg_per_px_estimate_missing;
   EXPECT_NEAR(f.deg_per_px_estimate_ratio, 1.0, 0.15);
   EXPECT_NEAR(f.deg_per_px_estimate_ratio_tilt, 1.0, 0.15);
@@ -78,7 +78,7 @@ TEST(SimFlightTest, TheOnlineDegPerPxEstimateReachesTheReport) {
 }
 
 TEST(SimFlightTest, PKeepsNoEstimateAndTheReportSaysWhy) {
-  const FlightFigures f = Fly(KiteConfig(ControllerKind::kP), 60);
+  const FlightFigures f = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_P), 60);
   EXPECT_TRUE(std::isnan(f.deg_per_px_estimate_ratio));
   EXPECT_NE(f.deg_per_px_estimate_missing.find("no online deg/px estimate"), std::string::npos)
       << f.deg_per_px_estimate_missing;
