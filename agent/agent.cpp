@@ -117,8 +117,8 @@ std::optional<kapfix::link::CurveServerKeys> ReadLinkKeys(LinkConfig* link, bool
     }
   }
   if (!link->curve_secret_key_file.empty()) {
-    curve =
-        kapfix::link::ReadCurveServerKeys(link->curve_secret_key_file, link->curve_authorized_keys_file, &error);
+    curve = kapfix::link::ReadCurveServerKeys(link->curve_secret_key_file,
+                                              link->curve_authorized_keys_file, &error);
     if (!curve) throw std::runtime_error(error);
     spdlog::info("link: CurveZMQ, {} authorised station key(s)", curve->authorized_stations.size());
   }
@@ -209,7 +209,8 @@ Agent::Agent(AgentConfig config, AgentOptions options)
       std::make_unique<ResumeStore>(std::filesystem::path(config_.state_dir) / "resume");
   std::optional<ResumeRecord> resumed;
   if (options_.resume && config_.resume) resumed = LoadResumeRecord(*resume_store_, &config_);
-  const std::optional<kapfix::link::CurveServerKeys> curve = ReadLinkKeys(&config_.link, options_.insecure);
+  const std::optional<kapfix::link::CurveServerKeys> curve =
+      ReadLinkKeys(&config_.link, options_.insecure);
   simulated_ = options_.simulate || (config_.camera.backend == CameraBackend::kSim &&
                                      config_.servo.backend == ServoBackend::kSim);
   if (!simulated_ && (config_.camera.backend == CameraBackend::kSim ||
@@ -333,7 +334,8 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
   return pipeline;
 }
 
-void Agent::StartPublisher(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget) {
+void Agent::StartPublisher(const std::optional<kapfix::link::CurveServerKeys>& curve,
+                           std::size_t budget) {
   StreamPublisherOptions publisher_options;
   publisher_options.max_connections = budget;
   publisher_options.bind_endpoint = config_.link.stream_address;
@@ -385,7 +387,8 @@ void Agent::StartModes(const std::optional<ResumeRecord>& resumed, const Pipelin
   if (resumed && !resume_view) state_->OnResumeEnded(true);
 }
 
-void Agent::StartCommandServer(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget) {
+void Agent::StartCommandServer(const std::optional<kapfix::link::CurveServerKeys>& curve,
+                               std::size_t budget) {
   Pipeline* running = pipeline_.get();
   executor_ = std::make_unique<CommandExecutor>(CommandTargets{
       .state = *state_,

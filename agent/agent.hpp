@@ -25,12 +25,12 @@
 #include "agent/resume/resume_recorder.hpp"
 #include "agent/resume/resume_store.hpp"
 #include "agent/server/command_server.hpp"
-#include "link/curve_server_keys.hpp"
 #include "agent/server/stream_publisher.hpp"
 #include "agent/service/systemd_notifier.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
 #include "agent/worker/work_queue.hpp"
 #include "common/sim/simulated_platform.hpp"
+#include "link/curve_server_keys.hpp"
 
 namespace kapfix::agent {
 
@@ -129,12 +129,14 @@ class Agent {
   // Camera and servos (real or simulated), opened or left for the pipeline to retry; the
   // pipeline's options for them, and the predictive controller's options in `predictive`.
   PipelineOptions OpenDevices(PredictiveOptions* predictive);
-  void StartPublisher(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget);
+  void StartPublisher(const std::optional<kapfix::link::CurveServerKeys>& curve,
+                      std::size_t budget);
   void StartPhotos();
   // The modes, as the previous run left them when `resumed`.
   void StartModes(const std::optional<ResumeRecord>& resumed, const PipelineOptions& pipeline,
                   const PredictiveOptions& predictive);
-  void StartCommandServer(const std::optional<kapfix::link::CurveServerKeys>& curve, std::size_t budget);
+  void StartCommandServer(const std::optional<kapfix::link::CurveServerKeys>& curve,
+                          std::size_t budget);
 
   // The configuration as started: wiring reads its devices, link and folders. The settings
   // are StateKeeper's (state_->settings()); nothing reads them here after construction.

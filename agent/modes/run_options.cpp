@@ -70,8 +70,9 @@ bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
          s.sampling.seed == t.sampling.seed && s.patch_px == t.patch_px && s.slices == t.slices &&
          s.axis == t.axis && s.range_px == t.range_px && s.channel == t.channel &&
          s.subpixel == t.subpixel && s.slice_score == t.slice_score &&
-         s.dc_hysteresis_px == t.dc_hysteresis_px && a.gains.controller() == b.gains.controller() && l.name == m.name &&
-         l.DegPerPxPan() == m.DegPerPxPan() && l.DegPerPxTilt() == m.DegPerPxTilt();
+         s.dc_hysteresis_px == t.dc_hysteresis_px && a.gains.controller() == b.gains.controller() &&
+         l.name == m.name && l.DegPerPxPan() == m.DegPerPxPan() &&
+         l.DegPerPxTilt() == m.DegPerPxTilt();
 }
 
 }  // namespace kapfix::agent

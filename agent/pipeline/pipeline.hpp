@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "agent/capture/frame_source.hpp"
-#include "agent/pipeline/device_health.hpp"
 #include "agent/modes/frame_processor.hpp"
+#include "agent/pipeline/device_health.hpp"
 #include "agent/pipeline/latest_frame_slot.hpp"
 #include "agent/pipeline/servo_commander.hpp"
 #include "agent/pipeline/step_observer.hpp"

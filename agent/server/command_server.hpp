@@ -19,8 +19,8 @@
 #include "agent/server/command_validator.hpp"
 #include "agent/server/replay_window.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
-#include "link/curve_server_keys.hpp"
 #include "link/bounded_intake.hpp"
+#include "link/curve_server_keys.hpp"
 
 namespace kapfix::agent {
 

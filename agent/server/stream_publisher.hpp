@@ -37,9 +37,9 @@
 #include <string>
 
 #include "agent/server/stream_sink.hpp"
-#include "link/curve_server_keys.hpp"
 #include "agent/server/subscription_book.hpp"
 #include "link/bounded_intake.hpp"
+#include "link/curve_server_keys.hpp"
 
 namespace kapfix::agent {
 
