@@ -275,6 +275,7 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
       ClosedLoopOptions::ForMotion(ToPlatformMotion(config_.simulation.motion)).predictive;
   MonotonicClockUs clock = SteadyClockNowUs;
   std::unique_ptr<ServoDriver> backend;
+  int max_delay_frames = 0;  // [frames] the longest actuation delay (latency jitter); 0: fixed
 
   if (simulated_) {
     const std::string& scene_path = config_.simulation.scene;
@@ -299,12 +300,21 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
     };
     pipeline.lock_step = true;
     pipeline.actuation_delay_frames = 1 + platform_options.pan.latency_frames;
+    max_delay_frames =
+        1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames);
   } else {
     source_ = MakeCamera(config_.camera);
     backend = MakeServoBackend(config_.servo);
     pipeline.actuation_delay_frames = kHardwareActuationDelayFrames;
   }
   predictive.predictor.lead_frames = pipeline.actuation_delay_frames;
+  // With a jittering latency, aimed at every delay it may take (as the evaluation does).
+  predictive.lead_jitter_frames = std::max(0, max_delay_frames - pipeline.actuation_delay_frames);
+  // One belief per flight: the pipeline tells it what was sent and which frame is processed,
+  // the fixation controller resolves it (the command in effect when the latency jitters).
+  pipeline.servo_belief = std::make_shared<ServoBelief>(ServoBeliefOptions{
+      pipeline.actuation_delay_frames, std::max(pipeline.actuation_delay_frames, max_delay_frames),
+      ServoTargets{config_.servo.pan.limits.park_deg, config_.servo.tilt.limits.park_deg}});
 
   servos_ = std::make_unique<LimitedServoDriver>(std::move(backend), config_.servo.pan.limits,
                                                  config_.servo.tilt.limits, clock, 1.0 / fps);
@@ -370,6 +380,7 @@ void Agent::StartModes(const std::optional<ResumeRecord>& resumed, const Pipelin
   modes.default_deadline = {config_.search.swing_frames, config_.search.swing_seconds};
   modes.predictive = predictive;
   modes.actuation_delay_frames = pipeline.actuation_delay_frames;
+  modes.servo_belief = pipeline.servo_belief;
   modes.frame_period_s = 1.0 / fps;
   modes.recordings_dir = (std::filesystem::path(config_.photos.dir) / "free-swing").string();
   modes.worker = worker_;

@@ -5,6 +5,7 @@
 
 #include "agent/modes/run_options.hpp"
 #include "common/control/controller_factory.hpp"
+#include "common/control/servo_belief_controller.hpp"
 #include "common/image/color_channel.hpp"
 #include "common/selection/slice_geometry.hpp"
 #include "kapfix/v1/settings_schema.hpp"
@@ -43,6 +44,12 @@ std::unique_ptr<FixationLoop> ModeContext::MakeLoop(FixationOptions::Reference r
       MakeController(kapfix::v1::WordOf(settings_->gains.controller()), MakeGains(settings_->gains),
                      calibration, options_.predictive, &error);
   if (!controller) throw std::runtime_error("controller: " + error);
+  // Only against a stored reference: the belief tells the candidates apart by how well their
+  // views continue the swing, which a displacement from the previous frame (follow) is not.
+  if (options_.servo_belief && reference == FixationOptions::Reference::kStored) {
+    controller = std::make_unique<ServoBeliefController>(std::move(controller),
+                                                         options_.servo_belief, calibration);
+  }
   return std::make_unique<FixationLoop>(MakeFixationOptions(settings_->search, slice_, reference),
                                         strategy_, std::move(controller), calibration);
 }

@@ -11,6 +11,7 @@
 #include "agent/modes/mode_events.hpp"
 #include "agent/worker/work_queue.hpp"
 #include "common/control/predictive_controller.hpp"
+#include "common/control/servo_belief.hpp"
 #include "common/fixation/fixation_loop.hpp"
 #include "common/search/search_strategy.hpp"
 
@@ -26,6 +27,11 @@ struct ModeRunnerOptions {
   // Where the modes' disk writes go (free-swing recordings), off the control thread; their
   // results come back through ModeRunner::Process. None: the runner makes its own.
   std::shared_ptr<WorkQueue> worker;
+  // The pipeline's belief of the angles each frame was seen through: set, the fixation
+  // controller acts on it as resolved from each frame's measurement (ServoBeliefController),
+  // which picks the command in effect when the servo latency jitters. None: the controller
+  // acts on the `current` angles it is given.
+  std::shared_ptr<ServoBelief> servo_belief;
 };
 
 // What all modes share, owned by ModeRunner on the control thread: the settings snapshot in

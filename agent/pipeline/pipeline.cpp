@@ -8,8 +8,6 @@
 namespace kapfix::agent {
 namespace {
 
-constexpr std::size_t kCommandHistory = 64;
-
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -30,6 +28,14 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
                      .retry_max_ms = options_.retry_max_ms,
                      .on_health = [this](const DeviceHealth& health) { SetServoHealth(health); },
                  }) {
+  belief_ = options_.servo_belief;
+  if (!belief_) {
+    // A fixed latency: the command sent actuation_delay_frames earlier, park before the first.
+    belief_ = std::make_shared<ServoBelief>(
+        ServoBeliefOptions{options_.actuation_delay_frames, options_.actuation_delay_frames,
+                           ServoTargets{servos_.limits(ServoAxis::kPan).park_deg,
+                                        servos_.limits(ServoAxis::kTilt).park_deg}});
+  }
   if (!options_.camera_open) health_.camera = DeviceHealth::Waiting(options_.camera_error);
   if (!options_.servos_open) {
     health_.servos = DeviceHealth::Waiting(options_.servos_error);
@@ -190,17 +196,6 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
   slot_.Close();
 }
 
-ServoTargets Pipeline::SeenThrough(std::uint64_t index) const {
-  const auto delay = static_cast<std::uint64_t>(options_.actuation_delay_frames);
-  ServoTargets seen{servos_.limits(ServoAxis::kPan).park_deg,
-                    servos_.limits(ServoAxis::kTilt).park_deg};
-  if (index < delay) return seen;
-  for (auto it = commanded_.rbegin(); it != commanded_.rend(); ++it) {
-    if (it->first <= index - delay) return it->second;
-  }
-  return seen;
-}
-
 void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& kick) {
   std::optional<std::int64_t> previous_time_us;
   while (auto frame = slot_.Take()) {
@@ -211,7 +206,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     }
     previous_time_us = frame->capture_time_us;
 
-    const ServoTargets current = SeenThrough(frame->index);
+    const ServoTargets current = belief_->Expose(static_cast<std::int64_t>(frame->index));
     const FrameOutcome outcome = processor_.Process(*frame, current, dt_s);
     const FixationLoop::Step& step = outcome.step;
     const ServoTargets angles = commander_.Command(step.targets);
@@ -219,8 +214,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     stats->servo_errors = servo.errors;
     stats->servo_outages = servo.outages;
     stats->servo_recoveries = servo.recoveries;
-    commanded_.emplace_back(frame->index, angles);
-    if (commanded_.size() > kCommandHistory) commanded_.pop_front();
+    belief_->Sent(static_cast<std::int64_t>(frame->index), angles);
 
     TelemetryRecord record;
     record.index = frame->index;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/pipeline/watchdog.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
+#include "common/control/servo_belief.hpp"
 #include "common/fixation/fixation_loop.hpp"
 
 namespace kapfix::agent {
@@ -35,6 +37,11 @@ struct PipelineOptions {
   // it (1 + the servos' latency). The angles a frame was seen through are taken as the
   // command sent that many frames earlier (park before the first command).
   int actuation_delay_frames = 2;
+  // What the loop believes the servos showed while a frame was exposed: told every command
+  // sent (Sent) and every frame processed (Expose), shared with the fixation controller that
+  // resolves it when the latency jitters. None: the pipeline makes one with the fixed
+  // actuation_delay_frames.
+  std::shared_ptr<ServoBelief> servo_belief;
   double default_frame_period_s = 1.0 / 30;  // [s] dt for the first frame
   // A lost camera (Grab fails): the servos hold where they are (the watchdog does not count
   // the outage as a stall), Open is retried after retry_initial_ms, doubling up to
@@ -110,7 +117,6 @@ class Pipeline {
   // Retries Open with back-off until it succeeds (true) or Stop() (false).
   bool Reconnect(const std::string& reason, bool at_start);
   void ControlThread(PipelineStats* stats, const std::function<void()>& kick);
-  ServoTargets SeenThrough(std::uint64_t index) const;
   void SetCameraHealth(DeviceHealth health);
   void SetServoHealth(DeviceHealth health);
 
@@ -128,8 +134,8 @@ class Pipeline {
   // last report is the health as it is. Changes are rare (a device comes or goes).
   mutable std::mutex health_mutex_;
   DevicesHealth health_;
-  ServoCommander commander_;                                      // control thread only
-  std::deque<std::pair<std::uint64_t, ServoTargets>> commanded_;  // control thread only
+  ServoCommander commander_;             // control thread only
+  std::shared_ptr<ServoBelief> belief_;  // options_.servo_belief or the pipeline's own
 };
 
 }  // namespace kapfix::agent
