@@ -22,6 +22,7 @@
 #include "kapfix/v1/heartbeat.pb.h"
 #include "link/envelope.hpp"
 #include "link/handshake_monitor.hpp"
+#include "link/stream_loss_counter.hpp"
 #include "link/topic_names.hpp"
 #include "link/topic_table.hpp"
 #include "link/wake_signal.hpp"
@@ -102,10 +103,10 @@ struct AgentLinkClient::Impl {
   bool stopping = false;
   bool running = false;
 
-  mutable std::mutex status_mutex;  // guards status, gaps_by_topic, streams_heard
+  mutable std::mutex status_mutex;  // guards status, losses, streams_heard
   std::condition_variable streams_arrived;
   LinkStatus status;
-  std::map<std::string, std::uint64_t, std::less<>> gaps_by_topic;  // [count]
+  StreamLossCounter losses;  // status.sequence_gaps is its total
   bool streams_heard = false;
 
   std::unique_ptr<zmq::context_t> context;
@@ -119,7 +120,6 @@ struct AgentLinkClient::Impl {
   std::unordered_map<std::uint64_t, Waiting> waiting;  // by command sequence
   std::uint64_t command_sequence = 0;
   std::uint64_t heartbeat_sequence = 0;
-  std::unordered_map<std::string, std::uint64_t> last_sequence;  // per stream topic
   bool reported_up = false;
 };
 
@@ -142,6 +142,7 @@ void AgentLinkClient::Impl::Run(std::promise<void> started) {
     // Queue commands only on a live connection: one sent while the agent is away would
     // otherwise wait in ZeroMQ and reach the servos long after its requester gave up.
     dealer->set(zmq::sockopt::immediate, true);
+    sub->set(zmq::sockopt::rcvhwm, options.stream_receive_high_water_mark);
     if (raw_handler) {
       sub->set(zmq::sockopt::subscribe, "");
     } else {
@@ -299,14 +300,12 @@ void AgentLinkClient::Impl::HandleStream(std::string_view topic, std::string_vie
   {
     const std::lock_guard lock(status_mutex);
     ++status.messages_received;
-    std::uint64_t& last = last_sequence[std::string(topic)];
-    // A lower or equal number means the agent restarted its numbering: start over.
-    if (last != 0 && header->sequence() > last + 1) {
-      const std::uint64_t missing = header->sequence() - last - 1;
-      status.sequence_gaps += missing;
-      gaps_by_topic[std::string(topic)] += missing;
-    }
-    last = header->sequence();
+    losses.Received(topic, *header);
+    // The agent's heartbeat names the newest message of each topic: one not received by now
+    // is lost (StreamLossCounter says why it cannot still be on its way).
+    const auto* beat = dynamic_cast<const kapfix::v1::Heartbeat*>(message.get());
+    if (topic == kHeartbeatTopic && beat != nullptr) losses.Heard(*beat);
+    status.sequence_gaps = losses.total();
     streams_heard = true;
   }
   streams_arrived.notify_all();
@@ -349,6 +348,10 @@ void AgentLinkClient::Impl::SendHeartbeat(zmq::socket_t& dealer) {
   kapfix::v1::Heartbeat heartbeat;
   kapfix::v1::Stamp(heartbeat.mutable_header(), options.agent_id, ++heartbeat_sequence);
   heartbeat.set_interval_ms(static_cast<std::uint32_t>(options.heartbeat_interval.count()));
+  {
+    const std::lock_guard lock(status_mutex);
+    losses.FillLost(&heartbeat);  // the agent counts each station's losses from these
+  }
   // Not connected: dropped, as a stale heartbeat would only fake a latency.
   (void)SendRequest(dealer, kHeartbeatTopic, heartbeat.SerializeAsString());
 }
@@ -484,8 +487,7 @@ bool AgentLinkClient::WaitForStreams(std::chrono::milliseconds timeout) {
 
 std::uint64_t AgentLinkClient::SequenceGaps(std::string_view topic) const {
   const std::lock_guard lock(impl_->status_mutex);
-  const auto it = impl_->gaps_by_topic.find(topic);
-  return it == impl_->gaps_by_topic.end() ? 0 : it->second;
+  return impl_->losses.Lost(topic);
 }
 
 LinkStatus AgentLinkClient::Status() const {

@@ -8,7 +8,8 @@
 // - Streams: a SUB to the agent's PUB, one handler per topic, plus an optional raw handler
 //   that sees every message's bytes (recording).
 // - Heartbeats: sent on the DEALER every heartbeat_interval; the agent echoes each, which
-//   gives the round-trip latency. The link is up while anything valid arrived from the agent
+//   gives the round-trip latency. Each carries what this station lost of each stream topic
+//   (Heartbeat.lost), so the agent knows which station reads too slowly. The link is up while anything valid arrived from the agent
 //   within link_timeout (its periodic heartbeats on the PUB keep it up when idle).
 // - Reconnection is ZeroMQ's: both sockets reconnect by themselves; ZMTP heartbeats drop a
 //   dead TCP connection so that reconnection starts.
@@ -42,6 +43,10 @@ struct AgentLinkClientOptions {
   std::chrono::milliseconds link_timeout{3000};
   std::chrono::milliseconds zmtp_heartbeat_interval{1000};
   std::chrono::milliseconds zmtp_heartbeat_timeout{3000};
+  // [messages] ZMQ_RCVHWM of the stream socket: what ZeroMQ holds for this station before it
+  // stops reading the connection (the agent then drops this station's messages, counted in
+  // LinkStatus::sequence_gaps).
+  int stream_receive_high_water_mark = 1000;
   // Unset: plain ZMTP, which an agent with keys refuses.
   std::optional<CurveClientKeys> curve;
 };
@@ -53,9 +58,11 @@ struct LinkStatus {
   std::string agent_id;                 // as the agent's messages say
   std::uint64_t messages_received = 0;  // [count] valid stream messages
   std::uint64_t messages_invalid = 0;   // [count] stream messages that failed to decode
-  // [count] stream messages missing from the per-topic sequence numbers (the agent numbers
-  // what it hands to ZeroMQ, so a gap is a loss on the link, including what was published
-  // while this station was disconnected).
+  // [count] stream messages this station lost (StreamLossCounter): gaps in the per-topic
+  // sequence numbers, and the tail of a burst, which the agent's next periodic heartbeat shows
+  // (the agent numbers what it hands to ZeroMQ, so either is a loss on the link, including
+  // what was published while this station was disconnected). Sent back to the agent in this
+  // station's heartbeats (Heartbeat.lost), per topic.
   std::uint64_t sequence_gaps = 0;
   // Why the agent did not let this station in (a refused key, a wrong agent key, one end
   // without keys); empty while the last handshake succeeded or none failed.
@@ -105,7 +112,7 @@ class AgentLinkClient {
   bool WaitForStreams(std::chrono::milliseconds timeout);
 
   LinkStatus Status() const;
-  // [count] LinkStatus::sequence_gaps of one topic only, e.g. "telemetry".
+  // [count] LinkStatus::sequence_gaps of one topic only, e.g. "telemetry" (tails included).
   std::uint64_t SequenceGaps(std::string_view topic) const;
 
  private:

@@ -1,7 +1,11 @@
 #include "agent/server/command_server.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <array>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <exception>
 #include <future>
 #include <optional>
@@ -71,13 +75,16 @@ struct Envelope {
 
 struct CommandServer::Impl {
   Impl(AgentControl& agent, CommandServerOptions opts)
-      : options(std::move(opts)), intake(agent, options.agent_id, options.limits, options.replay) {}
+      : options(std::move(opts)),
+        intake(agent, options.agent_id, options.limits, options.replay),
+        subscriber_losses(options.subscriber_losses) {}
 
   void Run(std::promise<std::string> bound);
   void Serve(zmq::socket_t& socket);
   void Handle(zmq::socket_t& socket, const Request& request);
   void HandleCommand(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
   void HandleHeartbeat(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
+  std::string StationName(const Request& request) const;
   void SendReply(zmq::socket_t& socket, const Request& request, const Envelope& envelope,
                  Reply reply, std::uint64_t command_sequence);
   void Send(zmq::socket_t& socket, const Request& request, bool delimiter,
@@ -85,6 +92,7 @@ struct CommandServer::Impl {
 
   const CommandServerOptions options;
   CommandIntake intake;  // owned by the server thread
+  SubscriberLossBook subscriber_losses;
 
   std::unique_ptr<zmq::context_t> context;
   std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
@@ -212,6 +220,10 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
     return;
   }
   last_station_heard_us.store(request.received_us);
+  // What this station lost of the streams (issue 15): kept per station, a notice when it grows.
+  const std::string notice =
+      subscriber_losses.Report(StationName(request), heartbeat, std::chrono::steady_clock::now());
+  if (!notice.empty()) spdlog::warn("stream publisher: {}", notice);
   kapfix::v1::Heartbeat echo;
   kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence, options.boot_id);
   echo.set_echoed_send_time_us(heartbeat.header().send_time_us());
@@ -220,6 +232,21 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
   echo.set_interval_ms(0);         // an answer, not a periodic heartbeat (those travel on the PUB)
   heartbeats_echoed.fetch_add(1);  // before sending, so a station that got it sees it counted
   Send(socket, request, envelope.delimiter, kHeartbeatTopic, echo.SerializeAsString());
+}
+
+std::string CommandServer::Impl::StationName(const Request& request) const {
+  std::string name = StationOf(request.frames.back());  // its key's name, with CurveZMQ
+  if (!name.empty()) return name;
+  const std::string address =
+      binding.PeerAddressOf(zmq_msg_get(request.frames.back().handle(), ZMQ_SRCFD));
+  if (!address.empty()) return "at " + address;
+  name = "with routing id ";  // a plain station without an intake: one per connection
+  for (const unsigned char byte : View(request.frames[0])) {
+    std::array<char, 3> hex{};
+    std::snprintf(hex.data(), hex.size(), "%02x", byte);
+    name += hex.data();
+  }
+  return name;
 }
 
 void CommandServer::Impl::SendReply(zmq::socket_t& socket, const Request& request,
@@ -266,6 +293,10 @@ std::string CommandServer::Start() {
 void CommandServer::Stop() {
   StopSocketThread(impl_.get());
   impl_->binding.Close();
+}
+
+std::vector<StationLosses> CommandServer::SubscriberLosses() const {
+  return impl_->subscriber_losses.Stations();
 }
 
 CommandServer::Counters CommandServer::counters() const {

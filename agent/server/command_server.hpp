@@ -14,10 +14,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "agent/server/agent_control.hpp"
 #include "agent/server/command_validator.hpp"
 #include "agent/server/replay_window.hpp"
+#include "agent/server/subscriber_loss_book.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/bounded_intake.hpp"
 #include "link/curve_server_keys.hpp"
@@ -57,6 +59,8 @@ struct CommandServerOptions {
   // multipart message is held whole.
   std::optional<link::BoundedIntakeOptions> intake =
       link::IntakeWithBudget(4 * static_cast<std::uint64_t>(4 * kapfix::v1::kMaxCommandBytes));
+  // Issue 15: what each station reports lost of the streams in its heartbeats (Heartbeat.lost).
+  SubscriberLossBookOptions subscriber_losses;
 };
 
 class CommandServer {
@@ -90,6 +94,9 @@ class CommandServer {
   void Stop();
 
   Counters counters() const;
+  // What each station last reported lost of the streams, per topic (its CurveZMQ key's name;
+  // "at <address>" for a plain one), most recently heard first. Thread-safe.
+  std::vector<StationLosses> SubscriberLosses() const;
 
  private:
   struct Impl;

@@ -312,6 +312,15 @@ void StreamPublisher::Impl::ReceiveSubscriptions(zmq::socket_t& socket) {
 void StreamPublisher::Impl::SendHeartbeat(zmq::socket_t& socket) {
   kapfix::v1::Heartbeat heartbeat;
   heartbeat.set_interval_ms(static_cast<std::uint32_t>(options.heartbeat_interval.count()));
+  // Every message named here has been through Send(), i.e. written whole to each
+  // subscriber's pipe or dropped for it, before this heartbeat follows it down the same pipes:
+  // a subscriber that reads this and has not read one of them never will (StreamLossCounter).
+  for (const auto& [topic, newest] : sequences) {
+    if (topic == kHeartbeatTopic) continue;  // the heartbeat's own header numbers that topic
+    kapfix::v1::TopicCount* count = heartbeat.add_newest_sequence();
+    count->set_topic(topic);
+    count->set_count(newest);
+  }
   // The round trip is measured on the command socket (CommandServer echoes each station's
   // heartbeat): a PUB message reaches every station, so it cannot echo one of them.
   if (Send(socket, std::string(kHeartbeatTopic), heartbeat)) heartbeats_sent.fetch_add(1);

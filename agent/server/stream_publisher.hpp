@@ -15,8 +15,10 @@
 // - Per-subscriber isolation (issue 15): each subscriber has its own ZeroMQ queue of
 //   send_high_water_mark messages; a subscriber that does not read loses its own messages once
 //   its queue is full, never anyone else's (no XPUB_NODROP). It is told by the gap in each
-//   topic's header.sequence. libzmq does not report which subscriber dropped, so the count
-//   is per topic on the station's side, not here.
+//   topic's header.sequence, and of the tail of a burst by the periodic Heartbeat's
+//   newest_sequence (the newest sequence sent on each topic). libzmq does not report which
+//   subscriber dropped, so each subscriber counts its own losses (link::StreamLossCounter) and
+//   reports them in its heartbeats to the command server (SubscriberLossBook).
 // - What a subscriber sends is bounded: ZMQ_MAXMSGSIZE of max_subscription_bytes (a
 //   subscription is a message to the publisher; libzmq builds one trie node per byte of it),
 //   and a peer that does not finish its handshake within handshake_timeout is dropped. The
@@ -25,7 +27,8 @@
 //   and their length bounded) and ends the connection of a peer that goes beyond (libzmq
 //   keeps what it read in the connection's trie until then); behind an intake, each is
 //   reported consumed.
-// - A Heartbeat is published every heartbeat_interval.
+// - A Heartbeat is published every heartbeat_interval, naming the newest sequence sent on
+//   every other topic (Heartbeat.newest_sequence).
 
 #include <google/protobuf/message.h>
 
