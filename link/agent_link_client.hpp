@@ -9,8 +9,9 @@
 //   that sees every message's bytes (recording).
 // - Heartbeats: sent on the DEALER every heartbeat_interval; the agent echoes each, which
 //   gives the round-trip latency. Each carries what this station lost of each stream topic
-//   (Heartbeat.lost), so the agent knows which station reads too slowly. The link is up while anything valid arrived from the agent
-//   within link_timeout (its periodic heartbeats on the PUB keep it up when idle).
+//   (Heartbeat.lost), so the agent knows which station reads too slowly. The link is up while
+//   anything valid arrived from the agent within link_timeout (its periodic heartbeats on the PUB
+//   keep it up when idle).
 // - Reconnection is ZeroMQ's: both sockets reconnect by themselves; ZMTP heartbeats drop a
 //   dead TCP connection so that reconnection starts.
 //

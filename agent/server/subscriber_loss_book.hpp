@@ -24,17 +24,17 @@
 namespace kapfix::agent {
 
 struct SubscriberLossBookOptions {
-  std::size_t max_stations = 64;       // [count] stations remembered at once
-  std::size_t max_topics = 32;         // [count] topics kept per station; more are ignored
-  std::size_t max_topic_bytes = 64;    // [bytes] longer topic names are ignored
+  std::size_t max_stations = 64;           // [count] stations remembered at once
+  std::size_t max_topics = 32;             // [count] topics kept per station; more are ignored
+  std::size_t max_topic_bytes = 64;        // [bytes] longer topic names are ignored
   std::chrono::seconds notice_period{10};  // at most one notice per station per period
 
   bool IsValid(std::string* error) const;
 };
 
 struct StationLosses {
-  std::string station;                             // as SubscriberLossBook::Report was told
-  std::map<std::string, std::uint64_t> by_topic;   // [count] lost, as last reported
+  std::string station;                            // as SubscriberLossBook::Report was told
+  std::map<std::string, std::uint64_t> by_topic;  // [count] lost, as last reported
   std::uint64_t total() const;
 };
 
@@ -47,8 +47,9 @@ class SubscriberLossBook {
 
   // `station` reported `heartbeat.lost()` at `now`. Returns the notice to log when its losses
   // grew and no notice was given for it within notice_period, naming what it lost since the
-  // last notice (or since the start of the last period without losses); empty otherwise. A count lower than the last one is a station that started
-  // counting afresh (a restarted station): its growth counts from 0.
+  // last notice (or since the start of the last period without losses); empty otherwise. A count
+  // lower than the last one is a station that started counting afresh (a restarted station): its
+  // growth counts from 0.
   std::string Report(const std::string& station, const kapfix::v1::Heartbeat& heartbeat,
                      Clock::time_point now);
 

@@ -79,8 +79,10 @@ TEST(AgentLinkClientLossesTest, BurstWhoseTailIsDroppedIsCountedLostAfterTheNext
   release.set_value();
   // Nothing more is published on "telemetry": every message of the burst is either received or,
   // once a heartbeat sent after the burst has arrived, counted lost.
-  EXPECT_TRUE(WaitFor([&] { return received.load() + client.SequenceGaps("telemetry") == kBurst + 1; }))
-      << received.load() << " received, " << client.SequenceGaps("telemetry") << " counted lost";
+  EXPECT_TRUE(WaitFor([&] {
+    return received.load() + client.SequenceGaps("telemetry") == kBurst + 1;
+  })) << received.load()
+      << " received, " << client.SequenceGaps("telemetry") << " counted lost";
   // The case a gap can never show: the burst's last message was dropped.
   EXPECT_LT(last_frame.load(), kBurst);
   EXPECT_GE(client.SequenceGaps("telemetry"), kBurst - last_frame.load());

@@ -88,8 +88,7 @@ TEST(SubscriberLossBookTest, NoStationsIsRefusedNamingTheOption) {
   std::string error;
   EXPECT_FALSE(WithStations(0).IsValid(&error));
   EXPECT_NE(error.find("max_stations"), std::string::npos);
-  EXPECT_THROW(SubscriberLossBook(WithStations(0)),
-               std::invalid_argument);
+  EXPECT_THROW(SubscriberLossBook(WithStations(0)), std::invalid_argument);
 }
 
 }  // namespace

@@ -111,7 +111,8 @@ TEST(SubscriberLossesTest, AgentCountsTheStalledStationsLossesWhileTheReadingOne
     return slow_read.load() + lost == kCount && lost > 0 &&
            StationsLosingTelemetry(agent.server.SubscriberLosses(), &agent_count) == 1 &&
            agent_count == lost;
-  })) << "stalled station: " << slow_read.load() << " read, " << slow.SequenceGaps("telemetry")
+  })) << "stalled station: "
+      << slow_read.load() << " read, " << slow.SequenceGaps("telemetry")
       << " lost; the agent counts " << agent_count;
   // The reading station: everything arrived, and the agent heard it report nothing lost.
   EXPECT_EQ(read.load(), kCount);
