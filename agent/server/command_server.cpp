@@ -223,7 +223,7 @@ void CommandServer::Impl::HandleHeartbeat(zmq::socket_t& socket, const Request& 
   // What this station lost of the streams (issue 15): kept per station, a notice when it grows.
   const std::string notice =
       subscriber_losses.Report(StationName(request), heartbeat, std::chrono::steady_clock::now());
-  if (!notice.empty()) spdlog::warn("stream publisher: {}", notice);
+  if (!notice.empty()) spdlog::warn("{}", notice);
   kapfix::v1::Heartbeat echo;
   kapfix::v1::Stamp(echo.mutable_header(), options.agent_id, ++heartbeat_sequence, options.boot_id);
   echo.set_echoed_send_time_us(heartbeat.header().send_time_us());

@@ -73,7 +73,8 @@ void AddWatchCommand(CLI::App& app, const LinkArguments& link, CommandRun* run) 
       ->check(CLI::NonNegativeNumber);
   watch->add_flag("--summary", options->summary,
                   "instead of a line per message, print one line at the end: telemetry "
-                  "messages received, sequence gaps (messages lost on the link), messages the "
+                  "messages received, sequence gaps (messages lost on the link, a burst's tail "
+                  "included), messages the "
                   "agent dropped before the link, seconds");
   watch->callback(
       [&link, run, options] { *run = [&link, options] { return RunWatch(link, *options); }; });
