@@ -26,7 +26,7 @@ std::uint64_t StationLosses::total() const {
 }
 
 SubscriberLossBook::SubscriberLossBook(SubscriberLossBookOptions options)
-    : options_(std::move(options)) {
+    : options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
