@@ -92,7 +92,7 @@ int Report(Agent& agent, const AgentConfig& config, const PipelineStats& stats,
 int Main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("kapfix-agent"));
   CLI::App app{"kapfix-agent: keeps the camera locked on a view while the platform swings"};
-  const AgentCommandLine line(app);
+  AgentCommandLine line(app);  // not const: parsing writes into it
   CLI11_PARSE(app, argc, argv);
 
   AgentConfig config;
