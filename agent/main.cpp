@@ -58,7 +58,7 @@ PipelineStats RunUntilStopped(Agent& agent) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   });
-  const PipelineStats stats = agent.Run();
+  PipelineStats stats = agent.Run();
   done = true;
   stopper.join();
   return stats;
