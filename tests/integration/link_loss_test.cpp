@@ -10,9 +10,9 @@
 #include <signal.h>
 
 #include <algorithm>
-#include <cstddef>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
