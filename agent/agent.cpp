@@ -30,8 +30,9 @@ namespace {
 
 // Hardware: one frame of servo latency assumed until calibration measures it.
 constexpr int kHardwareActuationDelayFrames = 2;
-// [jobs] disk writes waiting at most: calibrations and recordings come one per process
-// (seconds apart), so a full queue means a disk that has stopped.
+// [jobs] slow jobs waiting at most: calibrations and recordings come one per process (seconds
+// apart), the servo driver's reopen one at a time, so a full queue means a disk or a device
+// that has stopped. One queue: a reopen may wait behind a disk write (and the other way round).
 constexpr std::size_t kWorkerJobs = 16;
 
 SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind) {
@@ -245,8 +246,9 @@ Agent::Agent(AgentConfig config, AgentOptions options)
   state_ = std::make_unique<StateKeeper>(
       config_, *publisher_, simulated_, [store] { return store->count(); }, calibrations_.get());
   state_republisher_ = std::make_unique<StateRepublisher>(*state_);
-  worker_ = std::make_shared<WorkQueue>("disk writer", kWorkerJobs);
+  worker_ = std::make_shared<WorkQueue>("worker", kWorkerJobs);
   state_->StoreCalibrationsOn(worker_.get());
+  pipeline.worker = worker_;  // the servo driver's reopen
 
   StartModes(resumed, pipeline, predictive);
   std::vector<StepObserver*> observers{telemetry_publisher_.get(), video_.get(), photos_.get()};

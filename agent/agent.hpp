@@ -157,8 +157,8 @@ class Agent {
   std::unique_ptr<TelemetryPublisher> telemetry_publisher_;
   TelemetryRecorder telemetry_;
   std::unique_ptr<CalibrationStore> calibrations_;
-  // Disk writes off the control thread (calibrations, free-swing recordings); after what its
-  // jobs use, before the state and the modes that post to it.
+  // Slow work off the control thread (calibrations, free-swing recordings, the servo driver's
+  // reopen); after what its jobs use, before the state, modes and pipeline that post to it.
   std::shared_ptr<WorkQueue> worker_;
   std::unique_ptr<StateKeeper> state_;
   std::unique_ptr<StateRepublisher> state_republisher_;

@@ -120,6 +120,39 @@ class NullEvents : public ModeEvents {
   void OnFreeSwingRecorded(const std::string& /*path*/, const std::string& /*error*/) override {}
 };
 
+void PinToCpu(int cpu) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  if (sched_setaffinity(0, sizeof(set), &set) != 0) std::perror("sched_setaffinity");
+}
+
+void PrintFigures(const PipelineStats& stats, double cpu_s, const TelemetryRecorder& recorder,
+                  double match_template_ms, const StreamPublisher::Counters& counters,
+                  const VideoDownlink& video, const DrainingStation& station) {
+  std::vector<double> latency;
+  for (const TelemetryRecord& r : recorder.records()) latency.push_back(r.loop_latency_ms);
+  const double per_frame_ms = 1000.0 * stats.wall_s / static_cast<double>(stats.processed);
+  std::printf("frames processed:       %llu in %.2f s (dropped %llu)\n",
+              static_cast<unsigned long long>(stats.processed), stats.wall_s,
+              static_cast<unsigned long long>(stats.dropped));
+  std::printf("fps (wall clock):       %.1f\n",
+              static_cast<double>(stats.processed) / stats.wall_s);
+  std::printf("fps per CPU-second:     %.1f   (CPU %.2f s, all threads, pinned to one CPU)\n",
+              static_cast<double>(stats.processed) / cpu_s, cpu_s);
+  std::printf("loop latency p50/p99:   %.3f / %.3f ms\n", Percentile(latency, 50),
+              Percentile(latency, 99));
+  std::printf(
+      "telemetry sent/dropped: %llu / %llu; video sent %llu, dropped %llu; station read %llu\n",
+      static_cast<unsigned long long>(counters.telemetry_sent),
+      static_cast<unsigned long long>(counters.telemetry_dropped),
+      static_cast<unsigned long long>(video.sent()),
+      static_cast<unsigned long long>(video.dropped()),
+      static_cast<unsigned long long>(station.received()));
+  std::printf("per frame: agent %.3f ms, cv::matchTemplate alone %.3f ms (ratio %.1fx)\n",
+              per_frame_ms, match_template_ms, match_template_ms / per_frame_ms);
+}
+
 int Run(int argc, char** argv) {
   CLI::App app{"kapfix-bench-agent: the agent's frames per second on one core"};
   std::uint64_t frames = 3000;
@@ -137,12 +170,7 @@ int Run(int argc, char** argv) {
   app.add_option("--scene", scene, "scene photo");
   CLI11_PARSE(app, argc, argv);
 
-  if (cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(cpu, &set);
-    if (sched_setaffinity(0, sizeof(set), &set) != 0) std::perror("sched_setaffinity");
-  }
+  if (cpu >= 0) PinToCpu(cpu);
   std::printf("rendering 300 frames of the kite's swing over %s …\n", scene.c_str());
   const std::vector<cv::Mat> swing = RenderSwing(scene, 300);
 
@@ -181,29 +209,8 @@ int Run(int argc, char** argv) {
   const double cpu_start = CpuSeconds();
   const PipelineStats stats = pipeline.Run();
   const double cpu_s = CpuSeconds() - cpu_start;
-  std::vector<double> latency;
-  for (const TelemetryRecord& r : recorder.records()) latency.push_back(r.loop_latency_ms);
-  const double match_template_ms = MatchTemplateMs(swing, 100);
-  const double per_frame_ms = 1000.0 * stats.wall_s / static_cast<double>(stats.processed);
-  const StreamPublisher::Counters counters = publisher.counters();
-  std::printf("frames processed:       %llu in %.2f s (dropped %llu)\n",
-              static_cast<unsigned long long>(stats.processed), stats.wall_s,
-              static_cast<unsigned long long>(stats.dropped));
-  std::printf("fps (wall clock):       %.1f\n",
-              static_cast<double>(stats.processed) / stats.wall_s);
-  std::printf("fps per CPU-second:     %.1f   (CPU %.2f s, all threads, pinned to one CPU)\n",
-              static_cast<double>(stats.processed) / cpu_s, cpu_s);
-  std::printf("loop latency p50/p99:   %.3f / %.3f ms\n", Percentile(latency, 50),
-              Percentile(latency, 99));
-  std::printf(
-      "telemetry sent/dropped: %llu / %llu; video sent %llu, dropped %llu; station read %llu\n",
-      static_cast<unsigned long long>(counters.telemetry_sent),
-      static_cast<unsigned long long>(counters.telemetry_dropped),
-      static_cast<unsigned long long>(video.sent()),
-      static_cast<unsigned long long>(video.dropped()),
-      static_cast<unsigned long long>(station.received()));
-  std::printf("per frame: agent %.3f ms, cv::matchTemplate alone %.3f ms (ratio %.1fx)\n",
-              per_frame_ms, match_template_ms, match_template_ms / per_frame_ms);
+  const double match_template_ms = MatchTemplateMs(swing, 100);  // the peer, on the same frames
+  PrintFigures(stats, cpu_s, recorder, match_template_ms, publisher.counters(), video, station);
   return 0;
 }
 

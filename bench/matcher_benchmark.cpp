@@ -95,6 +95,90 @@ double VectorisationSpeedup() {
   return scalar / vectorised;
 }
 
+// One photo's open-loop swing through every method: prints each method's gross failures and
+// pools its figures. false: the photo cannot be read.
+bool EvaluatePhoto(const std::string& data_dir, const std::string& photo, cv::Size size, int frames,
+                   int cross_range, const std::vector<Method>& methods,
+                   std::vector<Pooled>* pooled) {
+  std::string path = data_dir;
+  path += '/';
+  path += photo;
+  const cv::Mat scene = cv::imread(path, cv::IMREAD_COLOR);
+  if (scene.empty()) {
+    std::fprintf(stderr, "cannot read %s/%s (install opencv-doc: deploy/setup-debian.sh)\n",
+                 data_dir.c_str(), photo.c_str());
+    return false;
+  }
+  SwingOptions swing;
+  swing.frames = frames;
+  swing.camera.frame_size = size;
+  const SwingRecording recording = RecordSwing(scene, swing, ColorChannel::kGreen);
+  const cv::Rect patch = SlicePatch(size, 9, 5, 100);
+  std::printf("  %-17s %4dx%-4d%s", photo.c_str(), scene.cols, scene.rows,
+              recording.upscale_factor > 1.0 ? " (upscaled" : "");
+  if (recording.upscale_factor > 1.0) std::printf(" x%.2f)", recording.upscale_factor);
+  std::printf("  gross%%:");
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    SwingEvaluationOptions options;
+    std::string error;
+    ParseSamplingOptions(methods[m].sampling, &options.sampling, &error);
+    options.search.subpixel = methods[m].subpixel;
+    options.search.cross_range = cross_range;
+    const SwingEvaluation e =
+        EvaluateSwing(recording.planes, recording.truth, patch, *methods[m].strategy, options);
+    Pooled& p = (*pooled)[m];
+    p.us.insert(p.us.end(), e.search_us.begin(), e.search_us.end());
+    const auto n = static_cast<std::int64_t>(e.errors_px.size());
+    const auto nd = static_cast<double>(n);
+    p.frames += n;
+    p.within += std::llround(e.within_2px_pct * nd / 100.0);
+    p.gross += std::llround(e.gross_fail_pct * nd / 100.0);
+    p.pixels += e.pixels_per_estimate * nd;
+    std::printf(" %s %.1f", methods[m].label.c_str(), e.gross_fail_pct);
+  }
+  std::printf("\n");
+  return true;
+}
+
+// Per method: us per estimate, speed-up over matchTemplate, within 2 px %, gross %.
+using Figures = std::map<std::string, std::array<double, 4>>;
+
+// Prints the pooled figures of one frame size as a table and returns them.
+Figures PrintPooled(const std::vector<Method>& methods, const std::vector<Pooled>& pooled) {
+  const std::size_t peer = 4;  // matchTemplate
+  const double peer_us = Median(pooled[peer].us);
+  std::printf("\n  %-15s %-11s %12s %14s %10s %10s %14s\n", "method", "sampling", "us/estimate",
+              "x matchTempl.", "within2px%", "gross%", "pixels/est.");
+  Figures figures;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    const Pooled& p = pooled[m];
+    const double us = Median(p.us);
+    const double within = 100.0 * static_cast<double>(p.within) / static_cast<double>(p.frames);
+    const double gross = 100.0 * static_cast<double>(p.gross) / static_cast<double>(p.frames);
+    figures[methods[m].label] = {us, peer_us / us, within, gross};
+    std::printf("  %-15s %-11s %12.1f %14.1f %10.1f %10.2f %14.0f\n", methods[m].label.c_str(),
+                methods[m].sampling.c_str(), us, peer_us / us, within, gross,
+                p.pixels / static_cast<double>(p.frames));
+  }
+  return figures;
+}
+
+// The targets of issue 2 at 300×300; true when all are met.
+bool CheckTargets(Figures& figures) {
+  bool met = true;
+  const auto check = [&](bool ok, const std::string& what) {
+    std::printf("  target %-58s %s\n", what.c_str(), ok ? "MET" : "NOT MET");
+    met = met && ok;
+  };
+  std::printf("\n");
+  check(figures["h23"][1] >= 100.0, "h23 >= 100x faster than matchTemplate");
+  check(figures["all"][1] >= 10.0, "all >= 10x faster than matchTemplate");
+  check(figures["pyr"][3] <= 1.0, "pyr gross_fail_pct <= 1");
+  check(figures["pyr"][2] >= 97.0, "pyr within_2px_pct >= 97");
+  check(figures["pyr"][0] <= 3.0 * figures["h23"][0], "pyr time <= 3x h23");
+  return met;
+}
+
 int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int frames,
         const std::vector<std::string>& photos, int cross_range) {
   std::printf(
@@ -111,71 +195,10 @@ int Run(const std::string& data_dir, const std::vector<cv::Size>& sizes, int fra
     std::vector<Pooled> pooled(methods.size());
     std::printf("== %dx%d frames ==\n", size.width, size.height);
     for (const std::string& photo : photos) {
-      std::string path = data_dir;
-      path += '/';
-      path += photo;
-      const cv::Mat scene = cv::imread(path, cv::IMREAD_COLOR);
-      if (scene.empty()) {
-        std::fprintf(stderr, "cannot read %s/%s (install opencv-doc: deploy/setup-debian.sh)\n",
-                     data_dir.c_str(), photo.c_str());
-        return 2;
-      }
-      SwingOptions swing;
-      swing.frames = frames;
-      swing.camera.frame_size = size;
-      const SwingRecording recording = RecordSwing(scene, swing, ColorChannel::kGreen);
-      const cv::Rect patch = SlicePatch(size, 9, 5, 100);
-      std::printf("  %-17s %4dx%-4d%s", photo.c_str(), scene.cols, scene.rows,
-                  recording.upscale_factor > 1.0 ? " (upscaled" : "");
-      if (recording.upscale_factor > 1.0) std::printf(" x%.2f)", recording.upscale_factor);
-      std::printf("  gross%%:");
-      for (std::size_t m = 0; m < methods.size(); ++m) {
-        SwingEvaluationOptions options;
-        std::string error;
-        ParseSamplingOptions(methods[m].sampling, &options.sampling, &error);
-        options.search.subpixel = methods[m].subpixel;
-        options.search.cross_range = cross_range;
-        const SwingEvaluation e =
-            EvaluateSwing(recording.planes, recording.truth, patch, *methods[m].strategy, options);
-        Pooled& p = pooled[m];
-        p.us.insert(p.us.end(), e.search_us.begin(), e.search_us.end());
-        const auto n = static_cast<std::int64_t>(e.errors_px.size());
-        const auto nd = static_cast<double>(n);
-        p.frames += n;
-        p.within += std::llround(e.within_2px_pct * nd / 100.0);
-        p.gross += std::llround(e.gross_fail_pct * nd / 100.0);
-        p.pixels += e.pixels_per_estimate * nd;
-        std::printf(" %s %.1f", methods[m].label.c_str(), e.gross_fail_pct);
-      }
-      std::printf("\n");
+      if (!EvaluatePhoto(data_dir, photo, size, frames, cross_range, methods, &pooled)) return 2;
     }
-    const std::size_t peer = 4;  // matchTemplate
-    const double peer_us = Median(pooled[peer].us);
-    std::printf("\n  %-15s %-11s %12s %14s %10s %10s %14s\n", "method", "sampling", "us/estimate",
-                "x matchTempl.", "within2px%", "gross%", "pixels/est.");
-    std::map<std::string, std::array<double, 4>> figures;  // us, speedup, within, gross
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      const Pooled& p = pooled[m];
-      const double us = Median(p.us);
-      const double within = 100.0 * static_cast<double>(p.within) / static_cast<double>(p.frames);
-      const double gross = 100.0 * static_cast<double>(p.gross) / static_cast<double>(p.frames);
-      figures[methods[m].label] = {us, peer_us / us, within, gross};
-      std::printf("  %-15s %-11s %12.1f %14.1f %10.1f %10.2f %14.0f\n", methods[m].label.c_str(),
-                  methods[m].sampling.c_str(), us, peer_us / us, within, gross,
-                  p.pixels / static_cast<double>(p.frames));
-    }
-    if (size == cv::Size(300, 300)) {
-      const auto check = [&](bool ok, const std::string& what) {
-        std::printf("  target %-58s %s\n", what.c_str(), ok ? "MET" : "NOT MET");
-        targets_met = targets_met && ok;
-      };
-      std::printf("\n");
-      check(figures["h23"][1] >= 100.0, "h23 >= 100x faster than matchTemplate");
-      check(figures["all"][1] >= 10.0, "all >= 10x faster than matchTemplate");
-      check(figures["pyr"][3] <= 1.0, "pyr gross_fail_pct <= 1");
-      check(figures["pyr"][2] >= 97.0, "pyr within_2px_pct >= 97");
-      check(figures["pyr"][0] <= 3.0 * figures["h23"][0], "pyr time <= 3x h23");
-    }
+    Figures figures = PrintPooled(methods, pooled);
+    if (size == cv::Size(300, 300)) targets_met = CheckTargets(figures) && targets_met;
     std::printf("\n");
   }
   std::printf("targets at 300x300: %s\n", targets_met ? "all met" : "some not met (see above)");

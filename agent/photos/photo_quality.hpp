@@ -1,7 +1,6 @@
 #pragma once
 
 #include <opencv2/core.hpp>
-#include <vector>
 
 #include "common/shutter/best_phase_shutter.hpp"
 #include "kapfix/v1/photo.pb.h"
@@ -22,17 +21,5 @@ void FillSharpness(const cv::Mat& image, cv::Rect patch, kapfix::v1::PhotoMetada
 // Where the reference patch `patch` [px, reference frame] is seen in a frame whose measured
 // displacement is `displacement` [px]: the content moved by the displacement.
 cv::Rect PatchInFrame(cv::Rect patch, cv::Point2d displacement);
-
-// The photo figures of a flight (issue 13's benchmark), means over `photos`; NaN for none.
-struct PhotoFigures {
-  std::size_t photos = 0;
-  double view_speed_px_mean = 0;  // [px/frame] residual view speed at capture
-  double view_blur_px_mean = 0;   // [px] view travel during the exposure
-  double offset_px_mean = 0;      // [px] residual offset at capture
-  double sharpness_mean = 0;      // [grey²] variance of the Laplacian, whole photo
-  double wait_s_mean = 0;         // [s] request → capture
-  double lock_lost_share = 0;     // [1] photos taken with the lock not trusted
-};
-PhotoFigures ComputePhotoFigures(const std::vector<kapfix::v1::PhotoMetadata>& photos);
 
 }  // namespace kapfix::agent

@@ -43,6 +43,14 @@ DeviceHealth DeviceHealth::Lost(std::string_view reason) {
   return {DeviceStatus::kLost, BoundedUtf8(reason, kMaxDeviceReasonBytes)};
 }
 
+DeviceHealth DeviceHealth::Reopening(const DeviceHealth& out) {
+  if (out.reopening()) return out;
+  return {out.status,
+          BoundedUtf8(std::string(kReopeningPrefix) + out.reason, kMaxDeviceReasonBytes)};
+}
+
+bool DeviceHealth::reopening() const { return reason.rfind(kReopeningPrefix, 0) == 0; }
+
 std::string BoundedUtf8(std::string_view text, std::size_t max_bytes) {
   std::string out;
   for (std::size_t at = 0; at < text.size();) {

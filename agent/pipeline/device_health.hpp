@@ -20,6 +20,9 @@ enum class DeviceStatus {
 // along every Telemetry message.
 inline constexpr std::size_t kMaxDeviceReasonBytes = 160;
 
+// What a device's reason starts with while it is being reopened.
+inline constexpr std::string_view kReopeningPrefix = "reopening after: ";
+
 struct DeviceHealth {
   DeviceStatus status = DeviceStatus::kOk;
   std::string
@@ -28,6 +31,10 @@ struct DeviceHealth {
   static DeviceHealth Ok() { return {}; }
   static DeviceHealth Waiting(std::string_view reason);
   static DeviceHealth Lost(std::string_view reason);
+  // `out` (waiting or lost) while a reopen attempt runs on the worker: the same status, the
+  // reason led by kReopeningPrefix, so that the station and systemctl status say it.
+  static DeviceHealth Reopening(const DeviceHealth& out);
+  bool reopening() const;
   bool operator==(const DeviceHealth&) const = default;
 };
 

@@ -102,6 +102,80 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   return f;
 }
 
+PhotoFigures ComputePhotoFigures(const std::vector<kapfix::v1::PhotoMetadata>& photos) {
+  PhotoFigures f;
+  f.photos = photos.size();
+  if (photos.empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    f.view_speed_px_mean = f.view_blur_px_mean = f.offset_px_mean = f.sharpness_mean =
+        f.wait_s_mean = f.lock_lost_share = nan;
+    return f;
+  }
+  for (const auto& p : photos) {
+    f.view_speed_px_mean += p.view_speed_px_per_frame();
+    f.view_blur_px_mean += p.view_blur_px();
+    f.offset_px_mean += p.residual_offset_px();
+    f.sharpness_mean += p.sharpness_frame();
+    f.wait_s_mean += p.shutter_wait_s();
+    f.lock_lost_share += p.lock_lost() ? 1.0 : 0.0;
+  }
+  const auto n = static_cast<double>(photos.size());
+  f.view_speed_px_mean /= n;
+  f.view_blur_px_mean /= n;
+  f.offset_px_mean /= n;
+  f.sharpness_mean /= n;
+  f.wait_s_mean /= n;
+  f.lock_lost_share /= n;
+  return f;
+}
+
+nlohmann::json FlightSummary(const FlightFigures& figures, const PhotoFigures& photos,
+                             const PipelineStats& stats, const FlightDescription& flight) {
+  const auto number = [](double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+  };
+  nlohmann::json summary = {
+      {"rms_error_px", number(figures.rms_error_px)},
+      {"lock_lost_pct", figures.lock_lost_pct},
+      {"frames", figures.frames},
+      {"fps", figures.fps},
+      {"loop_latency_p50_ms", figures.loop_latency_p50_ms},
+      {"loop_latency_p99_ms", figures.loop_latency_p99_ms},
+      {"rss_mb", figures.rss_mb},
+      {"controller", flight.controller},
+      {"p95_error_px", number(figures.p95_error_px)},
+      {"gross_pct", number(figures.gross_pct)},
+      {"silent_gross_pct", number(figures.silent_gross_pct)},
+      // The online calibration's final estimate ÷ the simulated truth (issue 9); null with
+      // the reason in deg_per_px_estimate_missing.
+      {"deg_per_px_estimate_ratio", number(figures.deg_per_px_estimate_ratio)},
+      {"deg_per_px_estimate_ratio_tilt", number(figures.deg_per_px_estimate_ratio_tilt)},
+      {"deg_per_px_estimate_sigma", number(figures.deg_per_px_estimate_sigma)},
+      {"deg_per_px_estimate_trusted", figures.deg_per_px_estimate_trusted},
+      {"world", flight.simulated ? flight.world : std::string("none")},
+      {"scene", flight.simulated ? flight.scene : std::string()},
+      {"motion", flight.simulated ? flight.motion : std::string("none")},
+      {"simulated", flight.simulated},
+      {"dropped_frames", stats.dropped},
+      {"watchdog_stalls", stats.watchdog_stalls},
+      {"servo_errors", stats.servo_errors},
+      {"servo_outages", stats.servo_outages},
+      {"camera_reconnects", stats.camera_reconnects},
+      {"shutter", flight.shutter},
+      {"photos", photos.photos},
+      {"photo_view_speed_px_mean", number(photos.view_speed_px_mean)},
+      {"photo_view_blur_px_mean", number(photos.view_blur_px_mean)},
+      {"photo_offset_px_mean", number(photos.offset_px_mean)},
+      {"photo_sharpness_mean", number(photos.sharpness_mean)},
+      {"photo_wait_s_mean", number(photos.wait_s_mean)},
+      {"photo_lock_lost_share", number(photos.lock_lost_share)},
+  };
+  if (!figures.deg_per_px_estimate_missing.empty()) {
+    summary["deg_per_px_estimate_missing"] = figures.deg_per_px_estimate_missing;
+  }
+  return summary;
+}
+
 double PeakRssMb() {
   std::ifstream status("/proc/self/status");
   std::string line;

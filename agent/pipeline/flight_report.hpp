@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -8,6 +9,7 @@
 
 #include "agent/pipeline/pipeline.hpp"
 #include "agent/pipeline/telemetry_recorder.hpp"
+#include "kapfix/v1/photo.pb.h"
 
 namespace kapfix::agent {
 
@@ -39,6 +41,34 @@ struct FlightFigures {
   bool deg_per_px_estimate_trusted = false;
   std::string deg_per_px_estimate_missing;
 };
+
+// The photo figures of a flight (issue 13's benchmark), means over `photos`; NaN for none.
+struct PhotoFigures {
+  std::size_t photos = 0;
+  double view_speed_px_mean = 0;  // [px/frame] residual view speed at capture
+  double view_blur_px_mean = 0;   // [px] view travel during the exposure
+  double offset_px_mean = 0;      // [px] residual offset at capture
+  double sharpness_mean = 0;      // [grey²] variance of the Laplacian, whole photo
+  double wait_s_mean = 0;         // [s] request → capture
+  double lock_lost_share = 0;     // [1] photos taken with the lock not trusted
+};
+PhotoFigures ComputePhotoFigures(const std::vector<kapfix::v1::PhotoMetadata>& photos);
+
+// What the summary says about the flight besides its figures.
+struct FlightDescription {
+  std::string controller;  // the controller's word: "p", "pid", "predictive"
+  std::string shutter;     // the shutter's word: "interval", "best-phase"
+  bool simulated = false;
+  std::string world;   // the simulated world (WorldOptions::Describe); "none" outside simulation
+  std::string scene;   // the simulated scene photo; empty outside simulation
+  std::string motion;  // "kite", "boat"; "none" outside simulation
+};
+
+// The flight's summary (kapfix-agent --report prints it and writes it as DIR/summary.json):
+// each figure under its key, NaN as null. Scripts and tests read these keys (deploy/fly-sim.sh,
+// bench/, tests/integration): add keys, rename none.
+nlohmann::json FlightSummary(const FlightFigures& figures, const PhotoFigures& photos,
+                             const PipelineStats& stats, const FlightDescription& flight);
 
 // `true_deg_per_px` [deg/px]: the lens's true degrees per pixel, known in simulation only.
 FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,

@@ -26,6 +26,8 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
                  ServoCommanderOptions{
                      .retry_initial_ms = options_.retry_initial_ms,
                      .retry_max_ms = options_.retry_max_ms,
+                     .worker = options_.worker ? options_.worker
+                                               : std::make_shared<WorkQueue>("servo reopener", 1),
                      .on_health = [this](const DeviceHealth& health) { SetServoHealth(health); },
                  }) {
   belief_ = options_.servo_belief;

@@ -19,6 +19,7 @@
 #include "agent/pipeline/step_observer.hpp"
 #include "agent/pipeline/watchdog.hpp"
 #include "agent/servo/limited_servo_driver.hpp"
+#include "agent/worker/work_queue.hpp"
 #include "common/control/servo_belief.hpp"
 #include "common/fixation/fixation_loop.hpp"
 
@@ -47,10 +48,12 @@ struct PipelineOptions {
   // the outage as a stall), Open is retried after retry_initial_ms, doubling up to
   // retry_max_ms, until it succeeds or Stop(); then the flight resumes. Off: a lost camera
   // ends the run.
-  // The same back-off reopens a failed servo driver (ServoCommander); that one always retries.
+  // The same back-off reopens a failed servo driver (ServoCommander); that one always retries,
+  // each attempt a job on `worker` (the agent's; none: a queue of the pipeline's own).
   bool reconnect_camera = true;
   int retry_initial_ms = 100;  // [ms]
   int retry_max_ms = 5000;     // [ms]
+  std::shared_ptr<WorkQueue> worker;
   // Start-up that waits for hardware: a camera or servo driver that did not open is retried
   // with the same back-off from the start (said in the log), rather than ending the run. The
   // servos are not moved before a camera frame arrives and the driver is open.

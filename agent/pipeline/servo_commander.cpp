@@ -4,10 +4,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
 #include <string>
 #include <utility>
 
 namespace kapfix::agent {
+
+// Written once by the job on the worker, read by the control thread after done().
+struct ServoCommander::Reopen {
+  void Finish(LimitedServoDriver::BackendReopen outcome) {
+    const std::lock_guard lock(mutex);
+    reopened = std::move(outcome);
+    finished = true;
+    changed.notify_all();
+  }
+  bool done() {
+    const std::lock_guard lock(mutex);
+    return finished;
+  }
+  void Wait() {
+    std::unique_lock lock(mutex);
+    changed.wait(lock, [this] { return finished; });
+  }
+
+  std::mutex mutex;
+  std::condition_variable changed;
+  bool finished = false;
+  LimitedServoDriver::BackendReopen reopened;
+};
 
 ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
                                ServoCommanderOptions options, MonotonicClockUs clock)
@@ -18,7 +43,7 @@ ServoCommander::ServoCommander(LimitedServoDriver& servos, std::mutex& mutex,
       held_{servos.angle(ServoAxis::kPan), servos.angle(ServoAxis::kTilt)} {}
 
 ServoCommander::~ServoCommander() {
-  if (reopen_thread_.joinable()) reopen_thread_.join();
+  if (reopen_) reopen_->Wait();
 }
 
 ServoTargets ServoCommander::Command(const ServoTargets& targets) {
@@ -58,7 +83,8 @@ void ServoCommander::StartOut(const std::string& reason) {
   spdlog::warn(
       "servo driver not open at start: opening it with the first camera frame, then "
       "retrying with back-off");
-  Report(DeviceHealth::Waiting(reason));
+  out_health_ = DeviceHealth::Waiting(reason);
+  Report(out_health_);
 }
 
 void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
@@ -69,41 +95,63 @@ void ServoCommander::Fail(const std::string& error, std::int64_t now_us) {
   attempts_ = 0;
   ++counters_.outages;
   spdlog::error("servo driver failed: {}; the servos hold, reopening it in {} ms", error, wait_ms_);
-  Report(DeviceHealth::Lost(error));
+  out_health_ = DeviceHealth::Lost(error);
+  Report(out_health_);
 }
 
 void ServoCommander::RetryIfDue(std::int64_t now_us) {
-  if (reopen_running_) {
-    if (reopen_done_.load(std::memory_order_acquire)) FinishReopen(now_us);
+  if (reopen_) {
+    if (!reopen_->done()) return;  // the worker is still at it: the servos hold
+    const std::shared_ptr<Reopen> finished = std::move(reopen_);
+    FinishReopen(finished->reopened, now_us);
+    if (out_) Report(out_health_);  // no longer reopening
     return;
   }
-  if (now_us < next_retry_us_) return;
-  ++attempts_;
-  reopen_running_ = true;
-  reopen_done_.store(false);
-  auto reopen = [this] {
-    const std::lock_guard lock(mutex_);
-    std::string error;
-    reopen_ok_ = servos_.Reopen(&error);
-    reopen_error_ = error;
-    reopen_done_.store(true, std::memory_order_release);
-  };
-  if (options_.reopen_in_background) {
-    reopen_thread_ = std::thread(reopen);
-  } else {
-    reopen();
-    FinishReopen(now_us);
-  }
+  if (now_us >= next_retry_us_) StartReopen(now_us);
 }
 
-void ServoCommander::FinishReopen(std::int64_t now_us) {
-  if (reopen_thread_.joinable()) reopen_thread_.join();
-  reopen_running_ = false;
-  if (reopen_ok_) {
+void ServoCommander::StartReopen(std::int64_t now_us) {
+  ++attempts_;
+  {
+    // From here until FinishReopen nothing reaches the backend (the watchdog's Park included),
+    // so the worker may open it without this lock.
+    const std::lock_guard lock(mutex_);
+    servos_.Suspend();
+  }
+  if (!options_.worker) {
+    FinishReopen(servos_.OpenBackend(), now_us);
+    return;
+  }
+  auto reopen = std::make_shared<Reopen>();
+  auto job = [reopen, &servos = servos_]() -> WorkQueue::Result {
+    LimitedServoDriver::BackendReopen reopened;
+    try {
+      reopened = servos.OpenBackend();
+    } catch (const std::exception& e) {  // a driver should not throw; the loop must not hang
+      reopened.error = e.what();
+    }
+    reopen->Finish(std::move(reopened));
+    return nullptr;  // the control thread polls the outcome in Command
+  };
+  std::string refused;
+  if (!options_.worker->Post("servo driver reopen", std::move(job), &refused)) {
+    LimitedServoDriver::BackendReopen not_run;
+    not_run.error = refused;
+    FinishReopen(not_run, now_us);
+    return;
+  }
+  reopen_ = std::move(reopen);
+  Report(DeviceHealth::Reopening(out_health_));
+}
+
+void ServoCommander::FinishReopen(const LimitedServoDriver::BackendReopen& reopened,
+                                  std::int64_t now_us) {
+  if (reopened.ok) {
     out_ = false;
     ++counters_.recoveries;
     {
       const std::lock_guard lock(mutex_);
+      servos_.AdoptBackend(reopened);  // the swap, between two frames
       held_ = {servos_.angle(ServoAxis::kPan), servos_.angle(ServoAxis::kTilt)};
     }
     spdlog::info("servo driver back after {:.1f} s ({} attempts): {}",
@@ -113,8 +161,8 @@ void ServoCommander::FinishReopen(std::int64_t now_us) {
   }
   wait_ms_ = std::min(2 * wait_ms_, options_.retry_max_ms);
   next_retry_us_ = now_us + std::int64_t{wait_ms_} * 1000;
-  spdlog::warn("servo driver reopen attempt {} failed: {}; next in {} ms", attempts_, reopen_error_,
-               wait_ms_);
+  spdlog::warn("servo driver reopen attempt {} failed: {}; next in {} ms", attempts_,
+               reopened.error, wait_ms_);
 }
 
 }  // namespace kapfix::agent

@@ -53,26 +53,48 @@ bool LimitedServoDriver::Open(std::string* error) {
 }
 
 bool LimitedServoDriver::Reopen(std::string* error) {
-  open_ = false;
-  if (!backend_->Open(error)) return false;
+  Suspend();
+  const BackendReopen reopened = OpenBackend();
+  if (!reopened.ok) {
+    if (error) *error = reopened.error;
+    return false;
+  }
+  AdoptBackend(reopened);
+  return true;
+}
+
+LimitedServoDriver::BackendReopen LimitedServoDriver::OpenBackend() {
+  BackendReopen reopened;
+  reopened.ok = backend_->Open(&reopened.error);
+  if (!reopened.ok) return reopened;
   for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
-    AxisState& s = State(axis);
     double read = 0;
     std::string why;
     if (backend_->ReadAngle(axis, &read, &why) && std::isfinite(read)) {
-      if (read != s.angle_deg) {
+      (axis == ServoAxis::kPan ? reopened.pan_deg : reopened.tilt_deg) = read;
+    }
+  }
+  return reopened;
+}
+
+void LimitedServoDriver::AdoptBackend(const BackendReopen& reopened) {
+  for (const ServoAxis axis : {ServoAxis::kPan, ServoAxis::kTilt}) {
+    AxisState& s = State(axis);
+    const std::optional<double>& read =
+        axis == ServoAxis::kPan ? reopened.pan_deg : reopened.tilt_deg;
+    if (read) {
+      if (*read != s.angle_deg) {
         spdlog::info(
             "servo {}: at {:g} deg after the outage (last commanded {:g} deg); slewing "
             "from there at the rate limit",
-            ToString(axis), read, s.angle_deg);
+            ToString(axis), *read, s.angle_deg);
       }
-      s.angle_deg = read;  // outside the limits: ServoLimiter takes the nearest limit
+      s.angle_deg = *read;  // outside the limits: ServoLimiter takes the nearest limit
       s.placed = true;
     }
     s.commanded_at_us = clock_();
   }
   open_ = true;
-  return true;
 }
 
 bool LimitedServoDriver::Command(ServoAxis axis, double target_deg, double dt_s,

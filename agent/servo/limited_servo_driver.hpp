@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "agent/servo/servo_driver.hpp"
@@ -52,7 +53,26 @@ class LimitedServoDriver : public ServoDriver {
   bool Open(std::string* error) override;
   // After the backend failed: opens it again without moving anything; each axis's angle
   // becomes the one the device reports (ReadAngle), else stays the last accepted one.
+  // Suspend(), then OpenBackend(), then AdoptBackend().
   bool Reopen(std::string* error);
+
+  // Reopen in three steps, for a caller that must not wait for the device (the control loop,
+  // whose reopen runs on a worker thread):
+  // - Suspend (quick, under the caller's lock): every command is refused ("not open") and none
+  //   reaches the backend until AdoptBackend;
+  // - OpenBackend (slow, on any one thread, without the lock): opens the backend and reads
+  //   where each axis stands; touches nothing but the backend, which no command reaches then;
+  // - AdoptBackend (quick, under the lock, after OpenBackend returned): takes those positions
+  //   and lets commands through again. Nothing moves in any of the three.
+  struct BackendReopen {
+    bool ok = false;
+    std::string error;               // why the backend did not open, when !ok
+    std::optional<double> pan_deg;   // [deg] where the device says the axis stands
+    std::optional<double> tilt_deg;  // [deg]
+  };
+  void Suspend() { open_ = false; }
+  BackendReopen OpenBackend();
+  void AdoptBackend(const BackendReopen& reopened);
   bool SetAngle(ServoAxis axis, double deg, std::string* error) override;
   bool Park(std::string* error) override;
   std::string Describe() const override;

@@ -48,6 +48,76 @@ bool Read(MaestroUsbPort& port, const MaestroParameter& parameter, std::uint16_t
   return true;
 }
 
+// The wanted parameters whose current value differs, and "name old → new" for each.
+bool FindDiffering(MaestroUsbPort& port, const std::vector<MaestroParameter>& wanted,
+                   std::vector<MaestroParameter>* differing, std::string* changes,
+                   std::string* cause) {
+  for (const MaestroParameter& parameter : wanted) {
+    std::uint16_t current = 0;
+    if (!Read(port, parameter, &current, cause)) return false;
+    if (current == parameter.value) continue;
+    differing->push_back(parameter);
+    if (!changes->empty()) *changes += ", ";
+    *changes += parameter.name + " " + DescribeParameterValue(parameter, current) + " → " +
+                DescribeParameterValue(parameter, parameter.value);
+  }
+  return true;
+}
+
+// Writes the differing parameters and reinitializes the Maestro so that they take effect.
+bool WriteDiffering(MaestroUsbPort& port, const std::vector<MaestroParameter>& differing,
+                    std::string* cause) {
+  for (const MaestroControlTransfer& transfer : MaestroSettingsTransfers(differing)) {
+    std::vector<std::uint8_t> unused;
+    std::string reason;
+    if (!port.Transfer(transfer, &unused, &reason)) {
+      *cause = transfer.request == maestro::kRequestReinitialize ? "cannot reinitialize it ("
+                                                                 : "cannot write a parameter (";
+      *cause += reason;
+      *cause += ")";
+      return false;
+    }
+  }
+  if (!differing.empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(kReinitializeWaitMs));
+  }
+  return true;
+}
+
+// Reads every wanted parameter back; `values` lists them as "name value".
+bool VerifyReadBack(MaestroUsbPort& port, const std::vector<MaestroParameter>& wanted,
+                    std::string* values, std::string* cause) {
+  for (const MaestroParameter& parameter : wanted) {
+    std::uint16_t back = 0;
+    if (!Read(port, parameter, &back, cause)) return false;
+    if (back != parameter.value) {
+      *cause = parameter.name + " reads back as " + DescribeParameterValue(parameter, back) +
+               " after writing " + DescribeParameterValue(parameter, parameter.value);
+      return false;
+    }
+    if (!values->empty()) *values += ", ";
+    *values += parameter.name + " " + DescribeParameterValue(parameter, parameter.value);
+  }
+  return true;
+}
+
+// The channels' own Min/Max are read only: they are the user's calibration of the servos,
+// which the agent checks its mapping against (MaestroServoDriver) but never overwrites.
+bool ReadChannelRanges(MaestroUsbPort& port, const std::vector<MaestroHome>& homes,
+                       std::vector<MaestroChannelRange>* ranges, std::string* cause) {
+  for (const MaestroHome& home : homes) {
+    std::uint16_t low = 0;
+    std::uint16_t high = 0;
+    if (!Read(port, ChannelMinParameter(home.channel), &low, cause) ||
+        !Read(port, ChannelMaxParameter(home.channel), &high, cause)) {
+      return false;
+    }
+    // [64 quarter-µs] = 16 µs per unit.
+    ranges->push_back({.channel = home.channel, .min_us = low * 16.0, .max_us = high * 16.0});
+  }
+  return true;
+}
+
 }  // namespace
 
 MaestroUsbSetupResult ApplyMaestroUsbSettings(MaestroUsbPort& port,
@@ -79,56 +149,13 @@ MaestroUsbSetupResult ApplyMaestroUsbSettings(MaestroUsbPort& port,
   wanted.push_back(SerialModeParameter());
   std::vector<MaestroParameter> differing;
   std::string changes;
-  for (const MaestroParameter& parameter : wanted) {
-    std::uint16_t current = 0;
-    if (!Read(port, parameter, &current, &reason)) return fail_at_device(reason);
-    if (current == parameter.value) continue;
-    differing.push_back(parameter);
-    if (!changes.empty()) changes += ", ";
-    changes += parameter.name + " " + DescribeParameterValue(parameter, current) + " → " +
-               DescribeParameterValue(parameter, parameter.value);
-  }
-
-  for (const MaestroControlTransfer& transfer : MaestroSettingsTransfers(differing)) {
-    std::vector<std::uint8_t> unused;
-    if (!port.Transfer(transfer, &unused, &reason)) {
-      std::string cause = transfer.request == maestro::kRequestReinitialize
-                              ? "cannot reinitialize it ("
-                              : "cannot write a parameter (";
-      cause += reason;
-      cause += ")";
-      return fail_at_device(cause);
-    }
-  }
-  if (!differing.empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(kReinitializeWaitMs));
-  }
-
   std::string values;
-  for (const MaestroParameter& parameter : wanted) {
-    std::uint16_t back = 0;
-    if (!Read(port, parameter, &back, &reason)) return fail_at_device(reason);
-    if (back != parameter.value) {
-      return fail_at_device(parameter.name + " reads back as " +
-                            DescribeParameterValue(parameter, back) + " after writing " +
-                            DescribeParameterValue(parameter, parameter.value));
-    }
-    if (!values.empty()) values += ", ";
-    values += parameter.name + " " + DescribeParameterValue(parameter, parameter.value);
-  }
-
-  // The channels' own Min/Max are read only: they are the user's calibration of the servos,
-  // which the agent checks its mapping against (MaestroServoDriver) but never overwrites.
   std::vector<MaestroChannelRange> ranges;
-  for (const MaestroHome& home : settings.homes) {
-    std::uint16_t low = 0;
-    std::uint16_t high = 0;
-    if (!Read(port, ChannelMinParameter(home.channel), &low, &reason) ||
-        !Read(port, ChannelMaxParameter(home.channel), &high, &reason)) {
-      return fail_at_device(reason);
-    }
-    // [64 quarter-µs] = 16 µs per unit.
-    ranges.push_back({.channel = home.channel, .min_us = low * 16.0, .max_us = high * 16.0});
+  if (!FindDiffering(port, wanted, &differing, &changes, &reason) ||
+      !WriteDiffering(port, differing, &reason) ||
+      !VerifyReadBack(port, wanted, &values, &reason) ||
+      !ReadChannelRanges(port, settings.homes, &ranges, &reason)) {
+    return fail_at_device(reason);
   }
 
   MaestroUsbSetupResult result{

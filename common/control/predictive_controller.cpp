@@ -11,7 +11,7 @@
 namespace kapfix {
 namespace {
 
-// The hand-over between forecast and P (see Update).
+// The hand-over between forecast and P (see GradeForecast).
 constexpr double kTrustRate = 0.05;        // [1/frame] EMA rate of the squared residual
 constexpr int kTrustMinGraded = 20;        // [frames] graded before it may hand over
 constexpr double kHandOverRatio = 1.1;     // residual RMS beyond this × persistence's: worse
@@ -138,55 +138,114 @@ void PredictiveController::SetCalibration(const LensCalibration& calibration) {
   RebuildSwingModels();
 }
 
+void PredictiveController::Remember(const ServoTargets& current, double dx_px, double dy_px) {
+  recent_.push_back({current.pan_deg, current.tilt_deg, dx_px, dy_px});
+  while (static_cast<int>(recent_.size()) > options_.predictor.window_frames) {
+    recent_.pop_front();
+  }
+}
+
+void PredictiveController::CountLostFrames(double dt_s, const ServoTargets& current) {
+  // Frames the camera lost show as a dt of several frame periods (the shortest dt seen):
+  // the swing models get them as missing samples, so their one-sample-per-frame clock holds.
+  if (!std::isfinite(dt_s) || dt_s <= 0) return;
+  if (frame_period_s_ <= 0 || dt_s < frame_period_s_) frame_period_s_ = dt_s;
+  const int lost = static_cast<int>(std::lround(dt_s / frame_period_s_)) - 1;
+  for (int k = 0; k < std::min(lost, options_.predictor.max_coast_frames + 1); ++k) {
+    pan_.AddMissing();
+    tilt_.AddMissing();
+    Remember(current, std::numeric_limits<double>::quiet_NaN(),
+             std::numeric_limits<double>::quiet_NaN());
+  }
+  if (lost > 0) {
+    pan_estimator_.AddMissing();
+    tilt_estimator_.AddMissing();
+  }
+}
+
+ServoTargets PredictiveController::Coast(double dt_s, const ServoTargets& current) {
+  pan_estimator_.AddMissing();
+  tilt_estimator_.AddMissing();
+  Remember(current, std::numeric_limits<double>::quiet_NaN(),
+           std::numeric_limits<double>::quiet_NaN());
+  // Bridge a short gap with the forecast; hold once the models give up.
+  ServoTargets target = current;
+  const bool pan_coasts = pan_.AddMissing();
+  const bool tilt_coasts = tilt_.AddMissing();
+  if (pan_coasts) {
+    target.pan_deg = *pan_.Forecast(options_.predictor.lead_frames) * calibration_.pan_deg_per_px;
+    predicting_pan_ = true;
+  }
+  if (tilt_coasts) {
+    target.tilt_deg =
+        *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
+    predicting_tilt_ = true;
+  }
+  return gains_.LimitRate(target, current, dt_s);
+}
+
+void PredictiveController::GradeForecast(const SwingPredictor& predictor, AxisTrust* trust,
+                                         double measured_px) {
+  // The forecast it acted on is graded by what the camera shows lead frames later: the
+  // residual displacement is that forecast's error. P's would be persistence's error
+  // (what P acts on). While the residual grows beyond persistence's, the forecast hands
+  // over to P smoothly; it comes back only after a hold-off and while its own forecasts
+  // of the swing are clearly better than persistence.
+  const double persistence = predictor.skill_rms(SwingPredictor::Forecaster::kPersistence);
+  if (trust->weight > 0.5) {
+    // Inside the dead band both controllers leave the residual alone on purpose.
+    const double excess = gains_.BeyondDeadBand(measured_px);
+    trust->residual_sq += kTrustRate * (excess * excess - trust->residual_sq);
+    ++trust->graded;
+  }
+  const bool graded = trust->graded >= kTrustMinGraded && std::isfinite(persistence);
+  if (graded && trust->weight > 0 && std::sqrt(trust->residual_sq) > kHandOverRatio * persistence) {
+    trust->weight = std::max(0.0, trust->weight - kHandOverStep);
+    if (trust->weight == 0.0) {
+      trust->hold = kReturnHoldFrames;
+      trust->residual_sq = 0;
+      trust->graded = 0;
+    }
+  } else if (trust->hold > 0) {
+    --trust->hold;
+  } else if (trust->weight < 1.0) {
+    const double model = predictor.skill_rms(SwingPredictor::Forecaster::kModel);
+    if (!std::isfinite(model) || model < kReturnSkillRatio * persistence) {
+      trust->weight = std::min(1.0, trust->weight + kReturnStep);
+    }
+  }
+}
+
+double PredictiveController::AimAxis(const SwingPredictor& predictor, const AxisTrust& trust,
+                                     double current_deg, double deg_per_px, double fallback_deg,
+                                     bool* predicting) const {
+  std::optional<double> ahead = predictor.Predict();
+  if (!ahead || trust.weight == 0.0) return fallback_deg;
+  if (options_.lead_jitter_frames > 0) {
+    const std::vector<double> shares = DelayShares(options_.lead_jitter_frames);
+    *ahead *= shares[0];
+    for (int k = 1; k <= options_.lead_jitter_frames; ++k) {
+      *ahead += shares[k] * *predictor.Forecast(options_.predictor.lead_frames + k);
+    }
+  }
+  *predicting = true;
+  const double correction_px = *ahead - current_deg / deg_per_px;
+  const double forecast_deg =
+      current_deg + gains_.p * gains_.Correctable(correction_px) * deg_per_px;
+  return trust.weight * forecast_deg + (1.0 - trust.weight) * fallback_deg;
+}
+
 ServoTargets PredictiveController::Update(const ControlInput& input, const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
   const bool measured = input.found && std::isfinite(d.x) && std::isfinite(d.y) &&
                         input.confidence >= options_.min_confidence;
-  ServoTargets target = current;
   predicting_pan_ = predicting_tilt_ = false;
-  const auto remember = [this, &current](double dx, double dy) {
-    recent_.push_back({current.pan_deg, current.tilt_deg, dx, dy});
-    while (static_cast<int>(recent_.size()) > options_.predictor.window_frames) {
-      recent_.pop_front();
-    }
-  };
-  // Frames the camera lost show as a dt of several frame periods (the shortest dt seen):
-  // the swing models get them as missing samples, so their one-sample-per-frame clock holds.
-  if (std::isfinite(input.dt_s) && input.dt_s > 0) {
-    if (frame_period_s_ <= 0 || input.dt_s < frame_period_s_) frame_period_s_ = input.dt_s;
-    const int lost = static_cast<int>(std::lround(input.dt_s / frame_period_s_)) - 1;
-    for (int k = 0; k < std::min(lost, options_.predictor.max_coast_frames + 1); ++k) {
-      pan_.AddMissing();
-      tilt_.AddMissing();
-      remember(std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN());
-    }
-    if (lost > 0) {
-      pan_estimator_.AddMissing();
-      tilt_estimator_.AddMissing();
-    }
-  }
-  if (!measured) {
-    pan_estimator_.AddMissing();
-    tilt_estimator_.AddMissing();
-    remember(std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN());
-    // Bridge a short gap with the forecast; hold once the models give up.
-    const bool pan_coasts = pan_.AddMissing();
-    const bool tilt_coasts = tilt_.AddMissing();
-    if (pan_coasts) {
-      target.pan_deg = *pan_.Forecast(options_.predictor.lead_frames) * calibration_.pan_deg_per_px;
-      predicting_pan_ = true;
-    }
-    if (tilt_coasts) {
-      target.tilt_deg =
-          *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
-      predicting_tilt_ = true;
-    }
-    return gains_.LimitRate(target, current, input.dt_s);
-  }
+  CountLostFrames(input.dt_s, current);
+  if (!measured) return Coast(input.dt_s, current);
 
   pan_estimator_.Add(current.pan_deg, d.x);
   tilt_estimator_.Add(current.tilt_deg, d.y);
-  remember(d.x, d.y);
+  Remember(current, d.x, d.y);
   const bool rebuilt = Adapt();  // before the models take this frame: a rebuild includes it
   // The uncorrected view [px]: what the servo compensated plus what was still left (a
   // rebuild in Adapt already added it).
@@ -196,57 +255,13 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
   }
   const ServoTargets proportional = fallback_.Update(input, current);
 
-  const auto axis = [this](const SwingPredictor& predictor, AxisTrust* trust, double measured_px,
-                           double current_deg, double deg_per_px, double fallback_deg,
-                           bool* predicting) {
-    // The forecast it acted on is graded by what the camera shows lead frames later: the
-    // residual displacement is that forecast's error. P's would be persistence's error
-    // (what P acts on). While the residual grows beyond persistence's, the forecast hands
-    // over to P smoothly; it comes back only after a hold-off and while its own forecasts
-    // of the swing are clearly better than persistence.
-    const double persistence = predictor.skill_rms(SwingPredictor::Forecaster::kPersistence);
-    if (trust->weight > 0.5) {
-      // Inside the dead band both controllers leave the residual alone on purpose.
-      const double excess = gains_.BeyondDeadBand(measured_px);
-      trust->residual_sq += kTrustRate * (excess * excess - trust->residual_sq);
-      ++trust->graded;
-    }
-    const bool graded = trust->graded >= kTrustMinGraded && std::isfinite(persistence);
-    if (graded && trust->weight > 0 &&
-        std::sqrt(trust->residual_sq) > kHandOverRatio * persistence) {
-      trust->weight = std::max(0.0, trust->weight - kHandOverStep);
-      if (trust->weight == 0.0) {
-        trust->hold = kReturnHoldFrames;
-        trust->residual_sq = 0;
-        trust->graded = 0;
-      }
-    } else if (trust->hold > 0) {
-      --trust->hold;
-    } else if (trust->weight < 1.0) {
-      const double model = predictor.skill_rms(SwingPredictor::Forecaster::kModel);
-      if (!std::isfinite(model) || model < kReturnSkillRatio * persistence) {
-        trust->weight = std::min(1.0, trust->weight + kReturnStep);
-      }
-    }
-    std::optional<double> ahead = predictor.Predict();
-    if (!ahead || trust->weight == 0.0) return fallback_deg;
-    if (options_.lead_jitter_frames > 0) {
-      const std::vector<double> shares = DelayShares(options_.lead_jitter_frames);
-      *ahead *= shares[0];
-      for (int k = 1; k <= options_.lead_jitter_frames; ++k) {
-        *ahead += shares[k] * *predictor.Forecast(options_.predictor.lead_frames + k);
-      }
-    }
-    *predicting = true;
-    const double correction_px = *ahead - current_deg / deg_per_px;
-    const double forecast_deg =
-        current_deg + gains_.p * gains_.Correctable(correction_px) * deg_per_px;
-    return trust->weight * forecast_deg + (1.0 - trust->weight) * fallback_deg;
-  };
-  target.pan_deg = axis(pan_, &pan_trust_, d.x, current.pan_deg, calibration_.pan_deg_per_px,
-                        proportional.pan_deg, &predicting_pan_);
-  target.tilt_deg = axis(tilt_, &tilt_trust_, d.y, current.tilt_deg, calibration_.tilt_deg_per_px,
-                         proportional.tilt_deg, &predicting_tilt_);
+  ServoTargets target = current;
+  GradeForecast(pan_, &pan_trust_, d.x);
+  target.pan_deg = AimAxis(pan_, pan_trust_, current.pan_deg, calibration_.pan_deg_per_px,
+                           proportional.pan_deg, &predicting_pan_);
+  GradeForecast(tilt_, &tilt_trust_, d.y);
+  target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
+                            proportional.tilt_deg, &predicting_tilt_);
   return gains_.LimitRate(target, current, input.dt_s);
 }
 

@@ -102,7 +102,7 @@ class PredictiveController final : public Controller {
   bool predicting_tilt_ = false;
   double frame_period_s_ = 0;  // [s] shortest dt seen: one frame; 0 = none yet
   // Per axis: how far the forecast is trusted against P (1: forecast, 0: P), graded on the
-  // residual the camera shows; see Update.
+  // residual the camera shows; see GradeForecast.
   struct AxisTrust {
     double weight = 1.0;
     double residual_sq = 0;  // [px²] EMA of the squared residual while the forecast leads
@@ -111,6 +111,18 @@ class PredictiveController final : public Controller {
   };
   AxisTrust pan_trust_;
   AxisTrust tilt_trust_;
+
+  // The steps of Update.
+  void Remember(const ServoTargets& current, double dx_px, double dy_px);
+  // Frames lost between two calls (dt of several frame periods) as missing samples.
+  void CountLostFrames(double dt_s, const ServoTargets& current);
+  // No measurement this frame: bridge with the forecast, then hold.
+  ServoTargets Coast(double dt_s, const ServoTargets& current);
+  // Moves an axis's trust in its forecast against P by the residual the camera shows.
+  void GradeForecast(const SwingPredictor& predictor, AxisTrust* trust, double measured_px);
+  // The axis's target [deg]: the forecast and P's target blended by the trust.
+  double AimAxis(const SwingPredictor& predictor, const AxisTrust& trust, double current_deg,
+                 double deg_per_px, double fallback_deg, bool* predicting) const;
 };
 
 }  // namespace kapfix

@@ -241,35 +241,49 @@ const std::vector<std::pair<int, std::int64_t>>& Profile(const ScoreMap& scored,
   return profile;
 }
 
-template <typename T, int kChannels = 1>
-// Named exception to the cognitive-complexity check: the coarse-to-fine search (SPEC §2.3)
-// kept in one piece, its levels and its cross-axis refinement side by side.
-// NOLINTNEXTLINE(readability-function-cognitive-complexity)
-SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
-                           const SearchOptions& options, int levels,
-                           std::atomic<std::uint64_t>& built) {
-  SearchResult result;
-  const bool search_x = options.axis != SearchAxis::kY;
-  const bool search_y = options.axis != SearchAxis::kX;
-  const int reach_x = search_x ? options.range : options.cross_range;
-  const int reach_y = search_y ? options.range : options.cross_range;
-  const int step = 1 << levels;
-  const cv::Rect bounds = reference.samples().bounds();
-  const cv::Rect ref_want(bounds.x - kBlurMargin, bounds.y - kBlurMargin,
-                          bounds.width + 2 * kBlurMargin, bounds.height + 2 * kBlurMargin);
+// Where one search looks: the axes searched, how far, and the crops it wants around the
+// patch in the reference and the current frame.
+struct SearchWindow {
+  bool search_x = true;
+  bool search_y = true;
+  int reach_x = 0;  // [px] full resolution
+  int reach_y = 0;  // [px] full resolution
+  int step = 1;     // [px] full-resolution pixels per coarsest-level pixel
+  cv::Rect bounds;  // the patch's samples
+  cv::Rect ref_want;
+  cv::Rect cur_want;
+};
+
+SearchWindow WindowFor(const ReferencePatch& reference, const SearchOptions& options, int levels) {
+  SearchWindow w;
+  w.search_x = options.axis != SearchAxis::kY;
+  w.search_y = options.axis != SearchAxis::kX;
+  w.reach_x = w.search_x ? options.range : options.cross_range;
+  w.reach_y = w.search_y ? options.range : options.cross_range;
+  w.step = 1 << levels;
+  w.bounds = reference.samples().bounds();
+  w.ref_want = cv::Rect(w.bounds.x - kBlurMargin, w.bounds.y - kBlurMargin,
+                        w.bounds.width + 2 * kBlurMargin, w.bounds.height + 2 * kBlurMargin);
   const cv::Point o = options.origin;
-  const cv::Rect cur_want(ref_want.x + o.x - reach_x - step, ref_want.y + o.y - reach_y - step,
-                          ref_want.width + 2 * (reach_x + step),
-                          ref_want.height + 2 * (reach_y + step));
-  // The reference's reduced crop depends only on the reference: built once per stored
-  // reference and shared by every later search against it.
+  w.cur_want = cv::Rect(
+      w.ref_want.x + o.x - w.reach_x - w.step, w.ref_want.y + o.y - w.reach_y - w.step,
+      w.ref_want.width + 2 * (w.reach_x + w.step), w.ref_want.height + 2 * (w.reach_y + w.step));
+  return w;
+}
+
+// The reference's reduced crop depends only on the reference: built once per stored
+// reference and shared by every later search against it. nullptr: the reference is too
+// close to its image's border for this many levels.
+template <typename T, int kChannels>
+const ReferenceLevels* ReducedReference(const ReferencePatch& reference, const SearchWindow& window,
+                                        int levels, std::atomic<std::uint64_t>& built) {
   const auto& ref_any = reference.Derived("pyr/" + std::to_string(levels), [&]() -> std::any {
     ++built;
     ReferenceLevels derived;
-    if (!MakeCrop(reference.image(), ref_want, levels, &derived.crop)) return {};
+    if (!MakeCrop(reference.image(), window.ref_want, levels, &derived.crop)) return {};
     derived.patches.resize(static_cast<std::size_t>(levels) + 1);
     for (int l = 1; l <= levels && sizeof(T) == 1 && kChannels == 1; ++l) {
-      const cv::Rect patch = LevelPatch(bounds, derived.crop.origin, l);
+      const cv::Rect patch = LevelPatch(window.bounds, derived.crop.origin, l);
       const cv::Mat& level = derived.crop.pyramid[static_cast<std::size_t>(l)];
       if (patch.width > 0 && patch.height > 0 &&
           (patch & cv::Rect(0, 0, level.cols, level.rows)) == patch) {
@@ -278,39 +292,116 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
     }
     return derived;
   });
-  const auto* derived = std::any_cast<ReferenceLevels>(&ref_any);
+  return std::any_cast<ReferenceLevels>(&ref_any);
+}
+
+// Every shift of the coarse window (±rx, ±ry around `centre`) that stays inside the crop,
+// scored a row at a time.
+template <typename T, int kChannels>
+void ScoreCoarseWindow(const LevelScorer<T, kChannels>& coarse, cv::Point centre, int rx, int ry,
+                       ScoreMap* scores) {
+  scores->reserve(static_cast<std::size_t>(2 * rx + 1) * static_cast<std::size_t>(2 * ry + 1));
+  thread_local std::vector<std::int64_t> row;
+  for (int sy = centre.y - ry; sy <= centre.y + ry; ++sy) {
+    const auto [lo, hi] = coarse.ValidX(sy);
+    const int first = std::max(centre.x - rx, lo);
+    const int last = std::min(centre.x + rx, hi);
+    if (first > last || !coarse.ScoreRow(first, last - first + 1, sy, &row)) continue;
+    for (int i = 0; i <= last - first; ++i) scores->emplace(cv::Point(first + i, sy), row[i]);
+  }
+}
+
+// How clearly the coarse window's error profile has one minimum along the searched axes.
+double CoarseConfidence(const ScoreMap& scores, const SearchWindow& window) {
+  double confidence = 1.0;
+  if (window.search_x) confidence = std::min(confidence, MatchConfidence(Profile(scores, true), 1));
+  if (window.search_y) {
+    confidence = std::min(confidence, MatchConfidence(Profile(scores, false), 1));
+  }
+  return confidence;
+}
+
+// Finer reduced levels: descends from twice the coarser best, all pixels, down to level 1.
+// false: a level could not be scored.
+template <typename T, int kChannels>
+bool DescendReducedLevels(const ReferenceLevels& derived, const Crop& cur, cv::Rect bounds,
+                          int levels, cv::Point window, cv::Point* best, SearchResult* result) {
+  for (int l = levels - 1; l >= 1; --l) {
+    const LevelScorer<T, kChannels> level(derived.crop, cur, bounds, l, derived.patch(l));
+    if (!level.valid()) return false;
+    ScoreMap scored;
+    cv::Point level_best = *best * 2;
+    if (!Descend(
+            *best * 2, window.x, window.y,
+            [&](cv::Point s, std::int64_t* d) { return level.Score(s, d); }, &scored,
+            &level_best)) {
+      return false;
+    }
+    result->evaluations += static_cast<int>(scored.size());
+    result->pixels_compared += static_cast<std::int64_t>(scored.size()) * level.area();
+    *best = level_best;
+  }
+  return true;
+}
+
+// The sub-pixel displacement around the whole-pixel minimum `fine`: a parabola through both
+// neighbours along each searched axis (scored by `full` when not yet in `scored`).
+template <typename ScoreFn>
+cv::Point2d RefineSubpixel(cv::Point fine, const SearchWindow& window, const ScoreFn& full,
+                           ScoreMap* scored) {
+  cv::Point2d refined(fine);
+  for (const bool along_x : {true, false}) {
+    if ((along_x && !window.search_x) || (!along_x && !window.search_y)) continue;
+    const cv::Point unit = along_x ? cv::Point(1, 0) : cv::Point(0, 1);
+    std::int64_t around[3] = {0, 0, 0};
+    bool ok = true;
+    for (int k = -1; k <= 1 && ok; ++k) {
+      const cv::Point s = fine + unit * k;
+      if (const std::int64_t* known = scored->find(s)) {
+        around[k + 1] = *known;
+      } else {
+        ok = full(s, &around[k + 1]);
+        if (ok) scored->emplace(s, around[k + 1]);
+      }
+    }
+    if (ok) {
+      const double offset = ParabolaVertexOffset(around[0], around[1], around[2]);
+      (along_x ? refined.x : refined.y) += offset;
+    }
+  }
+  return refined;
+}
+
+// The coarse-to-fine search (SPEC §2.3): the coarsest level's whole window jointly, a descent
+// per finer reduced level, one 3×3 window at full resolution, then the sub-pixel parabola.
+template <typename T, int kChannels = 1>
+SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& current,
+                           const SearchOptions& options, int levels,
+                           std::atomic<std::uint64_t>& built) {
+  SearchResult result;
+  const SearchWindow window = WindowFor(reference, options, levels);
+  const ReferenceLevels* derived = ReducedReference<T, kChannels>(reference, window, levels, built);
   thread_local Crop cur;
-  if (derived == nullptr || !MakeCrop(current, cur_want, levels, &cur)) return result;
-  const Crop& ref = derived->crop;
+  if (derived == nullptr || !MakeCrop(current, window.cur_want, levels, &cur)) return result;
 
   // Coarsest level: the whole window, jointly.
-  const LevelScorer<T, kChannels> coarse(ref, cur, bounds, levels, derived->patch(levels));
+  const LevelScorer<T, kChannels> coarse(derived->crop, cur, window.bounds, levels,
+                                         derived->patch(levels));
   if (!coarse.valid()) return result;
-  const cv::Point centre_c(FloorDiv(o.x, step), FloorDiv(o.y, step));
-  const int rx = (reach_x + step - 1) / step;
-  const int ry = (reach_y + step - 1) / step;
+  const int step = window.step;
+  const cv::Point centre_c(FloorDiv(options.origin.x, step), FloorDiv(options.origin.y, step));
+  const int rx = (window.reach_x + step - 1) / step;
+  const int ry = (window.reach_y + step - 1) / step;
   ScoreMap coarse_scores;
-  coarse_scores.reserve(static_cast<std::size_t>(2 * rx + 1) *
-                        static_cast<std::size_t>(2 * ry + 1));
-  thread_local std::vector<std::int64_t> row;
-  for (int sy = centre_c.y - ry; sy <= centre_c.y + ry; ++sy) {
-    const auto [lo, hi] = coarse.ValidX(sy);
-    const int first = std::max(centre_c.x - rx, lo);
-    const int last = std::min(centre_c.x + rx, hi);
-    if (first > last || !coarse.ScoreRow(first, last - first + 1, sy, &row)) continue;
-    for (int i = 0; i <= last - first; ++i) coarse_scores.emplace(cv::Point(first + i, sy), row[i]);
-  }
+  ScoreCoarseWindow(coarse, centre_c, rx, ry, &coarse_scores);
   if (coarse_scores.empty()) return result;
   cv::Point best =
       std::min_element(coarse_scores.begin(), coarse_scores.end(),
                        [](const auto& a, const auto& b) { return a.second < b.second; })
           ->first;
-  double confidence = 1.0;
-  if (search_x) confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, true), 1));
-  if (search_y)
-    confidence = std::min(confidence, MatchConfidence(Profile(coarse_scores, false), 1));
-  const int wx = (search_x || options.cross_range > 0) ? 1 : 0;
-  const int wy = (search_y || options.cross_range > 0) ? 1 : 0;
+  const double confidence = CoarseConfidence(coarse_scores, window);
+  const int wx = (window.search_x || options.cross_range > 0) ? 1 : 0;
+  const int wy = (window.search_y || options.cross_range > 0) ? 1 : 0;
   if (wx != rx || wy != ry) {
     // Settle the cross axis at the coarse level.
     cv::Point settled = best;
@@ -322,20 +413,9 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   result.evaluations += static_cast<int>(coarse_scores.size());
   result.pixels_compared += static_cast<std::int64_t>(coarse_scores.size()) * coarse.area();
 
-  // Finer reduced levels: descend from twice the coarser best, all pixels.
-  for (int l = levels - 1; l >= 1; --l) {
-    const LevelScorer<T, kChannels> level(ref, cur, bounds, l, derived->patch(l));
-    if (!level.valid()) return result;
-    ScoreMap scored;
-    cv::Point level_best = best * 2;
-    if (!Descend(
-            best * 2, wx, wy, [&](cv::Point s, std::int64_t* d) { return level.Score(s, d); },
-            &scored, &level_best)) {
-      return result;
-    }
-    result.evaluations += static_cast<int>(scored.size());
-    result.pixels_compared += static_cast<std::int64_t>(scored.size()) * level.area();
-    best = level_best;
+  if (!DescendReducedLevels<T, kChannels>(*derived, cur, window.bounds, levels, {wx, wy}, &best,
+                                          &result)) {
+    return result;
   }
 
   // Full resolution: the sampled pixels.
@@ -349,27 +429,8 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   // One 3×3 window, not a descent: at full resolution the brightness drift's pull (see
   // MakeCrop) would walk a descent away from the reduced levels' answer.
   if (!Descend(best * 2, wx, wy, full, &scored, &fine, /*max_steps=*/1)) return result;
-  // Both neighbours along each searched axis for the parabola.
-  cv::Point2d refined(fine);
-  for (const bool along_x : {true, false}) {
-    if ((along_x && !search_x) || (!along_x && !search_y) || !options.subpixel) continue;
-    const cv::Point unit = along_x ? cv::Point(1, 0) : cv::Point(0, 1);
-    std::int64_t around[3] = {0, 0, 0};
-    bool ok = true;
-    for (int k = -1; k <= 1 && ok; ++k) {
-      const cv::Point s = fine + unit * k;
-      if (const std::int64_t* known = scored.find(s)) {
-        around[k + 1] = *known;
-      } else {
-        ok = full(s, &around[k + 1]);
-        if (ok) scored.emplace(s, around[k + 1]);
-      }
-    }
-    if (ok) {
-      const double offset = ParabolaVertexOffset(around[0], around[1], around[2]);
-      (along_x ? refined.x : refined.y) += offset;
-    }
-  }
+  const cv::Point2d refined =
+      options.subpixel ? RefineSubpixel(fine, window, full, &scored) : cv::Point2d(fine);
   result.evaluations += static_cast<int>(scored.size());
   result.pixels_compared += static_cast<std::int64_t>(scored.size()) * reference.size();
   result.found = true;

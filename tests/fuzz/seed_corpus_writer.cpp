@@ -261,28 +261,9 @@ void WriteStreamSeeds(CorpusFolder& folder) {
   folder.Write("bad_invalid_utf8", StreamInput("log", log.SerializeAsString()));
 }
 
-void WriteCommandSeeds(CorpusFolder& folder) {
-  const auto write = [&](const std::string& name, const Command& command) {
-    folder.Write(name, command.SerializeAsString());
-  };
-  std::uint64_t sequence = 100;
-  Command command = SampleCommand(++sequence);
-  command.mutable_set_mode()->set_mode(kapfix::v1::MODE_SSP);
-  command.mutable_set_mode()->set_deadline_frames(600);
-  command.mutable_set_mode()->set_deadline_s(30.0F);
-  write("valid_set_mode", command);
-
-  command = SampleCommand(++sequence);
-  auto* gains = command.mutable_set_gains();
-  gains->set_controller(kapfix::v1::CONTROLLER_KIND_PID);
-  gains->set_p(0.8F);
-  gains->set_i(0.1F);
-  gains->set_d(0.05F);
-  gains->set_dead_band_px(1.0F);
-  gains->set_rate_limit_deg_per_s(90.0F);
-  write("valid_set_gains", command);
-
-  command = SampleCommand(++sequence);
+// Every search setting at a valid value.
+Command SearchCommand(std::uint64_t sequence) {
+  Command command = SampleCommand(sequence);
   auto* search = command.mutable_set_search();
   search->set_strategy("h23");
   search->set_sampling(kapfix::v1::SAMPLING_RANDOM);
@@ -295,123 +276,165 @@ void WriteCommandSeeds(CorpusFolder& folder) {
   search->set_channel(kapfix::v1::CHANNEL_GREEN);
   search->set_slice_score(kapfix::v1::SLICE_SCORE_KIND_DC_HYSTERESIS);
   search->set_dc_hysteresis_px(2.0F);
-  write("valid_set_search", command);
+  return command;
+}
 
-  command = SampleCommand(++sequence);
+// Commands the agent accepts, one per kind.
+void WriteValidCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence) {
+  const auto write = [&](const std::string& name, const Command& command) {
+    folder.Write(name, command.SerializeAsString());
+  };
+  Command command = SampleCommand(++*sequence);
+  command.mutable_set_mode()->set_mode(kapfix::v1::MODE_SSP);
+  command.mutable_set_mode()->set_deadline_frames(600);
+  command.mutable_set_mode()->set_deadline_s(30.0F);
+  write("valid_set_mode", command);
+
+  command = SampleCommand(++*sequence);
+  auto* gains = command.mutable_set_gains();
+  gains->set_controller(kapfix::v1::CONTROLLER_KIND_PID);
+  gains->set_p(0.8F);
+  gains->set_i(0.1F);
+  gains->set_d(0.05F);
+  gains->set_dead_band_px(1.0F);
+  gains->set_rate_limit_deg_per_s(90.0F);
+  write("valid_set_gains", command);
+
+  write("valid_set_search", SearchCommand(++*sequence));
+
+  command = SampleCommand(++*sequence);
   command.set_select_slice(3);
   write("valid_select_slice", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_camera()->set_gain_db(6.0F);
   command.mutable_set_camera()->set_exposure_us(5000.0F);
   command.mutable_set_camera()->set_auto_exposure(false);
   write("valid_set_camera", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_lens()->set_name("6mm");
   command.mutable_set_lens()->set_focal_length_mm(6.0F);
   command.mutable_set_lens()->set_pixel_pitch_um(3.75F);
   write("valid_set_lens", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_take_photo()->set_note("north shore, 40 m line");
   write("valid_take_photo", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.set_set_photo_interval_s(10.0F);
   write("valid_set_photo_interval_s", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_request_state()->set_resend_photos_since_us(kTimeUs - 60'000'000);
   command.mutable_request_state()->set_resend_slice_report(true);
   write("valid_request_state", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_video()->set_fps(15.0F);
   command.mutable_set_video()->set_jpeg_quality(80);
   command.mutable_set_video()->set_scale(0.5F);
   write("valid_set_video", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_photo()->set_shutter(kapfix::v1::SHUTTER_BEST_PHASE);
   command.mutable_set_photo()->set_window_s(2.0F);
   command.mutable_set_photo()->set_exposure_ms(10.0F);
   write("valid_set_photo", command);
 
   // An empty agent id addresses whichever agent answers.
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_header()->clear_agent_id();
   command.set_select_slice(1);
   write("valid_to_any_agent", command);
+}
 
-  command = SampleCommand(++sequence);
+// Frames the agent refuses before it reads the command: version, header, size.
+void WriteMalformedCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence) {
+  const auto write = [&](const std::string& name, const Command& command) {
+    folder.Write(name, command.SerializeAsString());
+  };
+  Command command = SampleCommand(++*sequence);
   command.mutable_header()->set_protocol_version(kapfix::v1::kProtocolVersion + 1);
   command.set_select_slice(3);
   write("bad_wrong_version", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.clear_header();
   command.set_select_slice(3);
   write("bad_no_header", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_gains()->set_p(0.8F);
   const std::string gains_bytes = command.SerializeAsString();
   folder.Write("bad_truncated", gains_bytes.substr(0, gains_bytes.size() - 2));
 
   // One byte over the limit; the note alone would be refused later, the size check must come
   // first (the agent does not parse what it will not keep).
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_take_photo()->set_note(std::string(kapfix::v1::kMaxCommandBytes, 'n'));
   std::string oversized = command.SerializeAsString();
   oversized.resize(kapfix::v1::kMaxCommandBytes + 1);
   folder.Write("bad_oversized", oversized);
+}
 
-  command = SampleCommand(++sequence);
+// Commands the agent refuses for their values: out of range, not finite, unknown.
+void WriteRefusedValueCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence) {
+  const auto write = [&](const std::string& name, const Command& command) {
+    folder.Write(name, command.SerializeAsString());
+  };
+  Command command = SampleCommand(++*sequence);
   command.mutable_set_gains()->set_p(std::numeric_limits<float>::quiet_NaN());
   write("bad_nan_gain", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_camera()->set_exposure_us(std::numeric_limits<float>::infinity());
   write("bad_infinite_exposure", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_gains()->set_rate_limit_deg_per_s(0.0F);
   write("bad_zero_rate_limit", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_mode()->set_mode(static_cast<kapfix::v1::Mode>(42));
   write("bad_unknown_mode", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_mode()->set_mode(kapfix::v1::MODE_UNSPECIFIED);
   write("bad_unspecified_mode", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.set_select_slice(10);  // the fake has 9 slices
   write("bad_slice_out_of_range", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_search()->set_patch_size_px(1000);  // the fake's frame is 640×480
   write("bad_patch_larger_than_frame", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_search()->set_strategy("h99");
   write("bad_unknown_strategy", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_set_lens()->set_name("../../etc/passwd");
   write("bad_lens_name_path", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.set_set_photo_interval_s(0.1F);
   write("bad_photo_interval_too_short", command);
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_request_state()->set_resend_photos_since_us(-1);
   write("bad_negative_resend_time", command);
+}
 
-  command = SampleCommand(++sequence);
+// Commands not for this agent, not numbered, empty, from a newer station, or not UTF-8.
+void WriteMisaddressedCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence) {
+  const auto write = [&](const std::string& name, const Command& command) {
+    folder.Write(name, command.SerializeAsString());
+  };
+  Command command = SampleCommand(++*sequence);
   command.mutable_header()->set_agent_id("someone-else");
   command.set_select_slice(3);
   write("bad_other_agent", command);
@@ -420,16 +443,24 @@ void WriteCommandSeeds(CorpusFolder& folder) {
   command.set_select_slice(3);
   write("bad_sequence_zero", command);
 
-  write("bad_no_command", SampleCommand(++sequence));
+  write("bad_no_command", SampleCommand(++*sequence));
 
   // Field 99 (varint 1): a command from a newer station that this agent does not know.
   folder.Write("bad_unknown_command_field",
-               SampleCommand(++sequence).SerializeAsString() + "\x98\x06\x01");
+               SampleCommand(++*sequence).SerializeAsString() + "\x98\x06\x01");
 
-  command = SampleCommand(++sequence);
+  command = SampleCommand(++*sequence);
   command.mutable_header()->set_agent_id("\xff\xfe");
   command.set_select_slice(3);
   write("bad_invalid_utf8_agent_id", command);
+}
+
+void WriteCommandSeeds(CorpusFolder& folder) {
+  std::uint64_t sequence = 100;
+  WriteValidCommandSeeds(folder, &sequence);
+  WriteMalformedCommandSeeds(folder, &sequence);
+  WriteRefusedValueCommandSeeds(folder, &sequence);
+  WriteMisaddressedCommandSeeds(folder, &sequence);
 }
 
 }  // namespace

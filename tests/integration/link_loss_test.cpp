@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -260,8 +261,14 @@ TEST(LinkLossTest, AgentMemoryStaysBoundedWhileTheStationIsGone) {
   std::ostringstream samples;
   for (const long kb : outage.rss_kb) samples << kb << " ";
   EXPECT_GT(outage.rss_kb.front(), 0);
-  EXPECT_LE(outage.rss_kb.back() - outage.rss_kb.front(), kRssMarginKb)
-      << "VmRSS [kB] every 2 s: " << samples.str();
+  // The allocator's working set swings by ~8 MB from one sample to the next (photos encoded,
+  // video frames queued), so one sample against another measures the swing. What is held for
+  // the missing station grows with the outage: the peak of the second half against the peak of
+  // the first.
+  const auto middle = outage.rss_kb.begin() + static_cast<std::ptrdiff_t>(outage.rss_kb.size() / 2);
+  const long first_peak = *std::max_element(outage.rss_kb.begin(), middle);
+  const long second_peak = *std::max_element(middle, outage.rss_kb.end());
+  EXPECT_LE(second_peak - first_peak, kRssMarginKb) << "VmRSS [kB] every 2 s: " << samples.str();
 }
 
 TEST(LinkLossTest, ReturningStationIsResynchronisedWithinTwoSeconds) {

@@ -1,14 +1,14 @@
 // kapfix-ctl: a headless ground station for scripts and tests (issue 3). One subcommand per
 // run; the exit code says what happened (see kExitCodes below and --help). Wiring only: each
-// subcommand lives in commands/<name>_command.cpp.
+// subcommand lives in commands/<name>_command.cpp, the flags they share in commands/link_flags.
 #include <CLI/CLI.hpp>
-#include <optional>
+#include <stdexcept>
 #include <string>
 
-#include "link/curve_key_file.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_output.hpp"
 #include "tools/ctl/commands/interrupt.hpp"
+#include "tools/ctl/commands/link_flags.hpp"
 
 namespace {
 
@@ -22,54 +22,13 @@ constexpr const char* kExitCodes =
     "  3  no answer within --timeout: the link is down, no agent listens, or it refused\n"
     "     this station's CurveZMQ key (the reason is printed when ZeroMQ tells it)\n";
 
-void AddLinkOptions(CLI::App& app, LinkArguments* link) {
-  app.add_option("--agent", link->host, "agent host name or address")->capture_default_str();
-  app.add_option("--command-port", link->command_port, "agent command port (ROUTER)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
-  app.add_option("--stream-port", link->stream_port, "agent stream port (PUB)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
-  app.add_option("--timeout", link->timeout_ms,
-                 "[ms] wait this long for a reply, or for any message from the agent")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 3'600'000));
-  app.add_option("--agent-id", link->agent_id,
-                 "address only the agent with this id (default: whichever listens)");
-  auto* key_option =
-      app.add_option("--key", link->key_file,
-                     "this station's secret key file (kapfix-keygen NAME writes NAME.key)")
-          ->check(CLI::ExistingFile);
-  auto* agent_key_option =
-      app.add_option("--agent-key", link->agent_key_file,
-                     "the agent's public key file (its .pub): with --key, the link uses CurveZMQ")
-          ->check(CLI::ExistingFile);
-  key_option->needs(agent_key_option);
-  agent_key_option->needs(key_option);
-}
-
-// Reads the CurveZMQ key files named by --key and --agent-key; false after naming the problem.
-bool ReadCurveKeys(LinkArguments* link) {
-  if (link->key_file.empty()) return true;
-  std::string why;
-  const auto station = kapfix::link::ReadSecretKeyFile(link->key_file, &why);
-  const auto agent =
-      station ? kapfix::link::ReadPublicKeyFile(link->agent_key_file, &why) : std::nullopt;
-  if (!agent) {
-    Error(why);
-    return false;
-  }
-  link->curve = kapfix::link::CurveClientKeys{*station, *agent};
-  return true;
-}
-
 int Main(int argc, char** argv) {
   CLI::App app{"kapfix-ctl: command a kapfix-agent and read its streams (a headless station)"};
   app.footer(std::string(kExitCodes));
   app.require_subcommand(1);
 
   LinkArguments link;
-  AddLinkOptions(app, &link);
+  AddLinkFlags(app, &link);
   CommandRun run;
   AddStatusCommand(app, link, &run);
   AddWatchCommand(app, link, &run);

@@ -20,6 +20,7 @@
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/maestro_usb_settings.hpp"
 #include "tests/agent/support/fake_maestro_usb_port.hpp"
+#include "tests/agent/support/held_open_servo_driver.hpp"
 #include "tests/agent/support/manual_clock.hpp"
 #include "tests/agent/support/recording_stream_sink.hpp"
 
@@ -236,27 +237,45 @@ TEST(PipelineTest, ACameraMissingAtStartIsWaitedForThenFlown) {
   }
 }
 
+// Runs `pipeline` on a thread of its own until `back` holds (the servos reported OK again after
+// an outage), then stops it: the reopen runs on a worker, so how many frames it takes depends
+// on the machine, not on the test.
+PipelineStats RunUntilTheServosAreBack(Pipeline& pipeline, const std::atomic<bool>& back) {
+  PipelineStats stats;
+  std::thread run([&pipeline, &stats] { stats = pipeline.Run(); });
+  EXPECT_TRUE(testing::WaitUntil([&back] { return back.load(); }, std::chrono::seconds(30)))
+      << "the servo driver never came back";
+  pipeline.Stop();
+  run.join();
+  return stats;
+}
+
 // The servos' health rides along every step: lost (with the driver's reason) while the driver
-// is out, OK again once it is reopened; reported on each change, not per frame.
+// is out, "reopening" while the worker opens it, OK again once it is back; reported on each
+// change, not per frame.
 TEST(PipelineTest, TheServosHealthIsLostWhileTheDriverIsOutThenOk) {
   Rig rig;
   ScriptedProcessor processor;
   PipelineOptions options;
-  options.frames = 40;
   options.lock_step = true;
   options.retry_initial_ms = 1;
   options.retry_max_ms = 2;
   processor.per_frame = std::chrono::milliseconds(1);
-  std::vector<DevicesHealth> reports;
-  options.on_health = [&reports](const DevicesHealth& health) { reports.push_back(health); };
+  std::vector<DevicesHealth> reports;  // control thread; read after it ended
+  std::atomic<bool> back{false};
+  options.on_health = [&reports, &back](const DevicesHealth& health) {
+    reports.push_back(health);
+    if (health.servos == DeviceHealth::Ok()) back = true;
+  };
   Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   rig.fake->Disconnect();  // unplugged before the first frame
-  const PipelineStats stats = pipeline.Run();
+  const PipelineStats stats = RunUntilTheServosAreBack(pipeline, back);
   ASSERT_EQ(stats.servo_recoveries, 1U);
-  ASSERT_EQ(reports.size(), 2u);
+  ASSERT_EQ(reports.size(), 3u);
   EXPECT_EQ(reports[0].servos.status, DeviceStatus::kLost);
   EXPECT_FALSE(reports[0].servos.reason.empty());
-  EXPECT_EQ(reports[1].servos, DeviceHealth::Ok());
+  EXPECT_EQ(reports[1].servos, DeviceHealth::Reopening(reports[0].servos));
+  EXPECT_EQ(reports[2].servos, DeviceHealth::Ok());
   const auto records = rig.telemetry.records();
   ASSERT_FALSE(records.empty());
   EXPECT_EQ(records.front().servo_health.status, DeviceStatus::kLost);
@@ -330,21 +349,75 @@ TEST(PipelineTest, AFailedServoDriverIsReopenedAndTheFlightResumes) {
   Rig rig;
   ScriptedProcessor processor;
   PipelineOptions options;
-  options.frames = 40;
   options.lock_step = true;
   options.retry_initial_ms = 1;
   options.retry_max_ms = 2;
   processor.per_frame = std::chrono::milliseconds(1);
+  std::atomic<bool> back{false};
+  options.on_health = [&back](const DevicesHealth& health) {
+    if (health.servos == DeviceHealth::Ok()) back = true;
+  };
   Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
   rig.fake->Disconnect();  // unplugged before the first frame
-  const PipelineStats stats = pipeline.Run();
-  EXPECT_EQ(stats.processed, 40U) << "the control loop went on through the outage";
+  const PipelineStats stats = RunUntilTheServosAreBack(pipeline, back);
   EXPECT_EQ(stats.servo_outages, 1U);
   EXPECT_EQ(stats.servo_recoveries, 1U);
-  // Fixation resumed: the last frames' targets reached the servos.
   const auto records = rig.telemetry.records();
   ASSERT_FALSE(records.empty());
+  // The control loop went on through the outage: steps were recorded with the servos out.
+  EXPECT_NE(records.front().servo_health, DeviceHealth::Ok());
+  // Fixation resumed: the last frames' targets reached the servos.
+  EXPECT_EQ(records.back().servo_health, DeviceHealth::Ok());
   EXPECT_DOUBLE_EQ(records.back().angle_pan_deg, processor.pan_deg);
+}
+
+// Issue 11, the control thread never waits: the servo driver fails and its reopen then blocks
+// inside the device's Open until the test releases it. Control steps go on meanwhile (20 of
+// them while the device is still inside Open), the health says "reopening", and once released
+// the driver is taken up and fixation goes on.
+TEST(PipelineTest, ControlStepsGoOnWhileTheServoDriverIsReopened) {
+  FakeFrameSource source(std::vector<cv::Mat>{cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(1))});
+  ASSERT_TRUE(source.Open(nullptr));
+  auto backend = std::make_unique<testing::HeldOpenServoDriver>();
+  testing::HeldOpenServoDriver* fake = backend.get();
+  auto ticks = std::make_shared<std::atomic<std::int64_t>>(0);
+  LimitedServoDriver servos(
+      std::move(backend), ServoLimits{}, ServoLimits{}, [ticks] { return (*ticks += 1'000'000); },
+      1.0);
+  ASSERT_TRUE(servos.Open(nullptr));
+  fake->Disconnect();  // unplugged before the first frame
+  fake->Hold();
+  ScriptedProcessor processor;
+  processor.per_frame = std::chrono::milliseconds(1);
+  std::atomic<std::uint64_t> steps{0};
+  processor.at_frame = [&steps](std::uint64_t /*frame*/) { ++steps; };
+  PipelineOptions options;
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  options.retry_max_ms = 2;
+  TelemetryRecorder telemetry;
+  Pipeline pipeline(source, servos, processor, {&telemetry}, options);
+  PipelineStats stats;
+  std::thread run([&pipeline, &stats] { stats = pipeline.Run(); });
+
+  const auto wait = std::chrono::seconds(30);  // a bound, not a pace: each wait ends on its event
+  EXPECT_TRUE(testing::WaitUntil([fake] { return fake->opening(); }, wait));
+  const std::uint64_t at_open = steps.load();
+  EXPECT_TRUE(testing::WaitUntil([&steps, at_open] { return steps.load() >= at_open + 20; }, wait))
+      << "the control loop waited for the device";
+  EXPECT_TRUE(fake->opening()) << "the device was released before the steps were counted";
+  EXPECT_TRUE(pipeline.health().servos.reopening()) << pipeline.health().servos.reason;
+  fake->Release();
+  EXPECT_TRUE(testing::WaitUntil(
+      [&pipeline] { return pipeline.health().servos == DeviceHealth::Ok(); }, wait));
+  pipeline.Stop();
+  run.join();
+  EXPECT_EQ(stats.servo_outages, 1U);
+  EXPECT_EQ(stats.servo_recoveries, 1U);
+  EXPECT_EQ(stats.watchdog_stalls, 0U);
+  const auto records = telemetry.records();
+  ASSERT_FALSE(records.empty());
+  EXPECT_DOUBLE_EQ(records.back().angle_pan_deg, processor.pan_deg) << "fixation went on";
 }
 
 TEST(PipelineTest, WithoutReconnectionALostCameraEndsTheRunWithItsReason) {
