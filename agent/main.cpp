@@ -311,6 +311,8 @@ int Main(int argc, char** argv) {
       {"silent_gross_pct", std::isfinite(figures.silent_gross_pct)
                                ? nlohmann::json(figures.silent_gross_pct)
                                : nlohmann::json(nullptr)},
+      {"gross_lock_held_pct", number(figures.gross_lock_held_pct)},
+      {"off_target_pct", figures.off_target_pct},
       // The online calibration's final estimate ÷ the simulated truth (issue 9); null with
       // the reason in deg_per_px_estimate_missing.
       {"deg_per_px_estimate_ratio", number(figures.deg_per_px_estimate_ratio)},

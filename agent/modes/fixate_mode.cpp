@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include "agent/modes/run_options.hpp"
 
 namespace kapfix::agent {
@@ -60,6 +62,18 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
     } else {
       spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
     }
+  }
+  // Held lock, right match, view farther than the off-target distance: the loop trails the
+  // view (a gust, the pull-in) and says so once, and again when the view is held (telemetry
+  // carries off_target on every frame; a lost lock has its own line above).
+  const FixationLoop::Step& step = outcome.step;
+  if (!trailing_ && !step.lock_lost && step.trusted && step.off_target) {
+    trailing_ = true;
+    spdlog::info("frame {}: view {:.1f} px off target, the loop trails it (lock held)", frame.index,
+                 std::hypot(step.match.displacement.x, step.match.displacement.y));
+  } else if (trailing_ && (step.lock_lost || !step.off_target)) {
+    trailing_ = false;
+    if (!step.off_target) spdlog::info("frame {}: view back on target", frame.index);
   }
   outcome.mode = kind_;
   outcome.slice = context_.slice();

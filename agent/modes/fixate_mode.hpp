@@ -41,6 +41,7 @@ class FixateMode : public Mode {
   const AgentMode kind_;
   std::unique_ptr<FixationLoop> loop_;
   bool lock_lost_ = false;             // the last frame's lock state, to log its changes
+  bool trailing_ = false;              // said (logged): lock held, the view off target
   cv::Mat reference_frame_;            // the frame the reference was taken from
   std::uint64_t reference_index_ = 0;  // its index
 };

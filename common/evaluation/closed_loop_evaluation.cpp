@@ -172,7 +172,19 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   double sum_x = 0, sum_y = 0, sum_open = 0, total_us = 0, sum_miss = 0, sum_confidence = 0;
   int measured = 0;
   int lost = 0, predicting = 0, gross = 0, silent_gross = 0, dropped = 0, missed = 0;
-  bool lock_lost = false;
+  int gross_lock_held = 0, off_target_frames = 0;
+  bool lock_lost = false, off_target = false;
+  // A gross frame is silent when the loop claims to hold the view (issue 9's honest lock).
+  const auto count_frame = [&](double view_error) {
+    figures.lock_lost.push_back(lock_lost);
+    figures.off_target.push_back(off_target);
+    off_target_frames += off_target ? 1 : 0;
+    if (view_error > kGrossErrorPx) {
+      ++gross;
+      silent_gross += off_target ? 0 : 1;
+      gross_lock_held += lock_lost ? 0 : 1;
+    }
+  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (int i = 0; i < options.frames; ++i) {
     platform.Step();
@@ -195,10 +207,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
       figures.believed.push_back({nan, nan});
       figures.commanded.push_back({nan, nan});
       lost += lock_lost ? 1 : 0;
-      if (view_error > kGrossErrorPx) {
-        ++gross;
-        silent_gross += lock_lost ? 0 : 1;
-      }
+      count_frame(view_error);
       if (progress) progress(i + 1, options.frames);
       continue;
     }
@@ -209,10 +218,8 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
     command(frame.frame, step.targets);
     figures.commanded.push_back(last_sent);
     lock_lost = step.lock_lost;
-    if (view_error > kGrossErrorPx) {
-      ++gross;
-      silent_gross += step.lock_lost ? 0 : 1;
-    }
+    off_target = step.off_target;
+    count_frame(view_error);
 
     if (step.match.found) {
       // A perfect match measures −ViewOffset (the content moves against the view).
@@ -242,6 +249,8 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.confidence_loss = measured > 0 ? 1.0 - sum_confidence / measured : nan;
   figures.gross_pct = 100.0 * gross / n;
   figures.silent_gross_pct = 100.0 * silent_gross / n;
+  figures.gross_lock_held_pct = 100.0 * gross_lock_held / n;
+  figures.off_target_pct = 100.0 * off_target_frames / n;
   figures.dropped_pct = 100.0 * dropped / n;
   figures.predicting_pct = 100.0 * predicting / n;
   FillCalibrationEstimate(predictive, platform_options.px_per_deg, &figures);
