@@ -94,12 +94,13 @@ ClosedLoopOptions Options(const World& world, const std::string& controller, dou
 void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
   std::ofstream out(path);
   out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
-         "commanded_tilt,measured_x,measured_y\n";
+         "commanded_tilt,measured_x,measured_y,lock_lost,off_target\n";
   for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
     out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
         << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
         << f.believed[k].tilt_deg << ',' << f.commanded[k].pan_deg << ',' << f.commanded[k].tilt_deg
-        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << '\n';
+        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << ',' << (f.lock_lost[k] ? 1 : 0)
+        << ',' << (f.off_target[k] ? 1 : 0) << '\n';
   }
 }
 
@@ -283,13 +284,13 @@ int Main(int argc, char** argv) {
   {
     std::ofstream csv(out_dir + "/loop.csv");
     csv << "scene,world,start,slice,controller,p_gain,seed,rms_error_px,p95_error_px,gross_pct,"
-           "silent_gross_pct,lock_lost_pct,dropped_pct\n";
+           "silent_gross_pct,lock_lost_pct,dropped_pct,gross_lock_held_pct,off_target_pct\n";
     for (const Run& r : runs) {
       const ClosedLoopFigures& f = r.figures;
       csv << r.scene << ',' << r.world << ',' << r.start << ',' << f.slice << ',' << r.controller
           << ',' << r.gain << ',' << r.seed << ',' << f.rms_error_px << ',' << f.p95_error_px << ','
           << f.gross_pct << ',' << f.silent_gross_pct << ',' << f.lock_lost_pct << ','
-          << f.dropped_pct << '\n';
+          << f.dropped_pct << ',' << f.gross_lock_held_pct << ',' << f.off_target_pct << '\n';
     }
   }
 

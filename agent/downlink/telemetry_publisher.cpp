@@ -81,6 +81,7 @@ kapfix::v1::Telemetry TelemetryPublisher::ToMessage(const TelemetryRecord& recor
   t.set_confidence(static_cast<float>(record.confidence));
   t.set_distance(record.distance);
   t.set_lock_lost(record.lock_lost);
+  t.set_off_target(record.off_target);
   t.set_pan_target_deg(static_cast<float>(record.target_pan_deg));
   t.set_tilt_target_deg(static_cast<float>(record.target_tilt_deg));
   t.set_pan_angle_deg(static_cast<float>(record.angle_pan_deg));

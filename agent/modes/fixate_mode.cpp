@@ -2,9 +2,17 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include "agent/modes/run_options.hpp"
 
 namespace kapfix::agent {
+namespace {
+
+// [frames] the least spacing of the log's off-target lines (5 s at 30 fps).
+constexpr std::uint64_t kOffTargetLogFrames = 150;
+
+}  // namespace
 
 void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) {
   reference_frame_ = frame.image.clone();
@@ -61,6 +69,25 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
       spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
     }
   }
+  // Held lock, right match, view farther than the off-target distance: the loop trails the
+  // view (a gust, the pull-in) and says so. Telemetry carries off_target on every frame; the
+  // log says when it starts, at most once per kOffTargetLogFrames with the count since the last
+  // line, or a gusty flight would write a line every few frames.
+  const FixationLoop::Step& step = outcome.step;
+  const bool trailing = !step.lock_lost && step.trusted && step.off_target;
+  off_target_frames_ += step.off_target ? 1 : 0;
+  const bool quiet_long_enough =
+      !last_off_target_log_ || frame.index >= *last_off_target_log_ + kOffTargetLogFrames;
+  if (trailing && !trailing_ && quiet_long_enough) {
+    spdlog::info(
+        "frame {}: view {:.1f} px off target, the loop trails it (lock held); {} frames off "
+        "target since the last such line",
+        frame.index, std::hypot(step.match.displacement.x, step.match.displacement.y),
+        off_target_frames_);
+    last_off_target_log_ = frame.index;
+    off_target_frames_ = 0;
+  }
+  trailing_ = trailing;
   outcome.mode = kind_;
   outcome.slice = context_.slice();
   outcome.slice_count = context_.settings().search.slices;

@@ -40,9 +40,12 @@ class FixateMode : public Mode {
   ModeContext& context_;
   const AgentMode kind_;
   std::unique_ptr<FixationLoop> loop_;
-  bool lock_lost_ = false;             // the last frame's lock state, to log its changes
-  cv::Mat reference_frame_;            // the frame the reference was taken from
-  std::uint64_t reference_index_ = 0;  // its index
+  bool lock_lost_ = false;               // the last frame's lock state, to log its changes
+  bool trailing_ = false;                // the last frame: lock held, the view off target
+  std::uint64_t off_target_frames_ = 0;  // since the last off-target log line
+  std::optional<std::uint64_t> last_off_target_log_;  // frame index of that line
+  cv::Mat reference_frame_;                           // the frame the reference was taken from
+  std::uint64_t reference_index_ = 0;                 // its index
 };
 
 }  // namespace kapfix::agent

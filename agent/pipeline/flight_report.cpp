@@ -65,12 +65,14 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   std::vector<double> latency, errors;
   double sum_sq = 0;
   std::size_t with_truth = 0, fixating = 0, lost = 0, gross = 0, silent_gross = 0;
+  std::size_t gross_lock_held = 0, off_target = 0;
   for (std::size_t i = 1; i < records.size(); ++i) {
     const TelemetryRecord& r = records[i];
     latency.push_back(r.loop_latency_ms);
     if (!r.reference_frame || *r.reference_frame == r.index) continue;
     ++fixating;
     lost += r.lock_lost ? 1 : 0;
+    off_target += r.off_target ? 1 : 0;
     const auto now = truth.find(r.index);
     const auto held = truth.find(*r.reference_frame);
     if (now == truth.end() || held == truth.end()) continue;
@@ -80,7 +82,8 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
     errors.push_back(std::hypot(error.x, error.y));
     if (errors.back() > kGrossErrorPx) {
       ++gross;
-      silent_gross += r.lock_lost ? 0 : 1;
+      silent_gross += r.off_target ? 0 : 1;
+      gross_lock_held += r.lock_lost ? 0 : 1;
     }
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -91,6 +94,9 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   f.p95_error_px = errors.empty() ? nan : Percentile(errors, 95.0);
   f.gross_pct = share(gross);
   f.silent_gross_pct = share(silent_gross);
+  f.gross_lock_held_pct = share(gross_lock_held);
+  f.off_target_pct =
+      fixating > 0 ? 100.0 * static_cast<double>(off_target) / static_cast<double>(fixating) : 0.0;
   f.rms_error_px = with_truth > 0 ? std::sqrt(sum_sq / static_cast<double>(with_truth))
                                   : std::numeric_limits<double>::quiet_NaN();
   f.lock_lost_pct =
@@ -146,6 +152,8 @@ nlohmann::json FlightSummary(const FlightFigures& figures, const PhotoFigures& p
       {"p95_error_px", number(figures.p95_error_px)},
       {"gross_pct", number(figures.gross_pct)},
       {"silent_gross_pct", number(figures.silent_gross_pct)},
+      {"gross_lock_held_pct", number(figures.gross_lock_held_pct)},
+      {"off_target_pct", figures.off_target_pct},
       // The online calibration's final estimate ÷ the simulated truth (issue 9); null with
       // the reason in deg_per_px_estimate_missing.
       {"deg_per_px_estimate_ratio", number(figures.deg_per_px_estimate_ratio)},

@@ -20,11 +20,15 @@ struct FlightFigures {
   double rms_error_px = 0;   // [px] RMS of |view offset| (simulation truth); NaN without truth
   double lock_lost_pct = 0;  // [%] fixating frames reported lock lost
   double p95_error_px = 0;   // [px] 95th percentile of the true view error; NaN without truth
-  // [%] fixating frames with a true view error > 10 px, and of those the ones with lock_lost
-  // false (the loop held a wrong view without saying so), as shares of all fixating frames
-  // with truth; NaN without truth.
+  // [%] fixating frames with a true view error > 10 px, and of those the ones where the loop
+  // claimed to hold the view (off_target false: lock held, match trusted, measured within the
+  // off-target distance), as shares of all fixating frames with truth; NaN without truth.
   double gross_pct = 0;
   double silent_gross_pct = 0;
+  // [%] the gross frames with lock_lost false alone, whether or not the loop said it was off
+  // target (the first reading of silent), and the frames it said it was off target.
+  double gross_lock_held_pct = 0;
+  double off_target_pct = 0;
   std::uint64_t frames = 0;        // control steps, reference frame included
   double fps = 0;                  // frames processed per wall-clock second
   double loop_latency_p50_ms = 0;  // [ms]

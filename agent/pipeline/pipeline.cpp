@@ -226,6 +226,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     record.displacement_y_px = step.match.displacement.y;
     record.confidence = step.match.confidence;
     record.lock_lost = step.lock_lost;
+    record.off_target = step.off_target;
     record.target_pan_deg = step.targets.pan_deg;
     record.target_tilt_deg = step.targets.tilt_deg;
     record.angle_pan_deg = angles.pan_deg;

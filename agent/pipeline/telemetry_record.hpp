@@ -18,6 +18,8 @@ struct TelemetryRecord {
   double displacement_y_px = 0;      // [px]
   double confidence = 0;             // [0, 1]
   bool lock_lost = false;
+  // The loop does not claim to hold the view (FixationLoop::Step::off_target; lost included).
+  bool off_target = false;
   double target_pan_deg = 0;  // [deg] what the controller asked for
   double target_tilt_deg = 0;
   double angle_pan_deg = 0;  // [deg] what the limited driver commanded

@@ -30,7 +30,7 @@ std::string TelemetryRecorder::ToCsv(const std::vector<TelemetryRecord>& records
   csv << "index,capture_time_us,found,displacement_x_px,displacement_y_px,confidence,lock_lost,"
          "target_pan_deg,target_tilt_deg,angle_pan_deg,angle_tilt_deg,loop_latency_ms,"
          "mode,slice,view_offset_x_px,view_offset_y_px,pan_deg_per_px,pan_deg_per_px_sigma,"
-         "tilt_deg_per_px,tilt_deg_per_px_sigma,deg_per_px_trusted,forecast_weight\n";
+         "tilt_deg_per_px,tilt_deg_per_px_sigma,deg_per_px_trusted,forecast_weight,off_target\n";
   for (const TelemetryRecord& r : records) {
     csv << r.index << ',' << r.capture_time_us << ',' << (r.found ? 1 : 0) << ','
         << r.displacement_x_px << ',' << r.displacement_y_px << ',' << r.confidence << ','
@@ -49,7 +49,7 @@ std::string TelemetryRecorder::ToCsv(const std::vector<TelemetryRecord>& records
     } else {
       csv << ",,,,,";
     }
-    csv << '\n';
+    csv << ',' << (r.off_target ? 1 : 0) << '\n';
   }
   return csv.str();
 }

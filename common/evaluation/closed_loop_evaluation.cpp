@@ -91,6 +91,30 @@ void FillCalibrationEstimate(const PredictiveController* predictive, double px_p
   figures->deg_per_px_estimate_trusted = estimator.trusted();
 }
 
+// Counts what the loop said about its gross frames (issue 9's honest lock): a gross frame is
+// silent when the loop claimed to hold the view (off_target false).
+struct LockHonesty {
+  int gross = 0, silent_gross = 0, gross_lock_held = 0, off_target_frames = 0;
+
+  void Add(double view_error, bool lock_lost, bool off_target, ClosedLoopFigures* figures) {
+    figures->lock_lost.push_back(lock_lost);
+    figures->off_target.push_back(off_target);
+    off_target_frames += off_target ? 1 : 0;
+    if (view_error > kGrossErrorPx) {
+      ++gross;
+      silent_gross += off_target ? 0 : 1;
+      gross_lock_held += lock_lost ? 0 : 1;
+    }
+  }
+  // As shares [%] of all `frames`.
+  void Finish(double frames, ClosedLoopFigures* figures) const {
+    figures->gross_pct = 100.0 * gross / frames;
+    figures->silent_gross_pct = 100.0 * silent_gross / frames;
+    figures->gross_lock_held_pct = 100.0 * gross_lock_held / frames;
+    figures->off_target_pct = 100.0 * off_target_frames / frames;
+  }
+};
+
 // [deg] `target` as far as the servo reaches from `previous` in one command: within `step` of
 // it and within [low, high].
 double ServoReach(double target, double previous, double low, double high, double step) {
@@ -171,8 +195,9 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   errors.reserve(static_cast<std::size_t>(options.frames));
   double sum_x = 0, sum_y = 0, sum_open = 0, total_us = 0, sum_miss = 0, sum_confidence = 0;
   int measured = 0;
-  int lost = 0, predicting = 0, gross = 0, silent_gross = 0, dropped = 0, missed = 0;
-  bool lock_lost = false;
+  int lost = 0, predicting = 0, dropped = 0, missed = 0;
+  bool lock_lost = false, off_target = false;
+  LockHonesty honesty;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (int i = 0; i < options.frames; ++i) {
     platform.Step();
@@ -195,10 +220,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
       figures.believed.push_back({nan, nan});
       figures.commanded.push_back({nan, nan});
       lost += lock_lost ? 1 : 0;
-      if (view_error > kGrossErrorPx) {
-        ++gross;
-        silent_gross += lock_lost ? 0 : 1;
-      }
+      honesty.Add(view_error, lock_lost, off_target, &figures);
       if (progress) progress(i + 1, options.frames);
       continue;
     }
@@ -209,10 +231,8 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
     command(frame.frame, step.targets);
     figures.commanded.push_back(last_sent);
     lock_lost = step.lock_lost;
-    if (view_error > kGrossErrorPx) {
-      ++gross;
-      silent_gross += step.lock_lost ? 0 : 1;
-    }
+    off_target = step.off_target;
+    honesty.Add(view_error, lock_lost, off_target, &figures);
 
     if (step.match.found) {
       // A perfect match measures −ViewOffset (the content moves against the view).
@@ -240,8 +260,7 @@ ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopO
   figures.p95_error_px = Percentile(errors, 95.0);
   figures.measurement_rms_px = measured > 0 ? std::sqrt(sum_miss / measured) : nan;
   figures.confidence_loss = measured > 0 ? 1.0 - sum_confidence / measured : nan;
-  figures.gross_pct = 100.0 * gross / n;
-  figures.silent_gross_pct = 100.0 * silent_gross / n;
+  honesty.Finish(n, &figures);
   figures.dropped_pct = 100.0 * dropped / n;
   figures.predicting_pct = 100.0 * predicting / n;
   FillCalibrationEstimate(predictive, platform_options.px_per_deg, &figures);

@@ -76,10 +76,16 @@ struct ClosedLoopFigures {
   double lock_lost_pct = 0;     // [%] frames reported lock lost
   double p95_error_px = 0;      // [px] 95th percentile of |ViewOffset| over the frames
   // [%] frames whose true view error |ViewOffset| > 10 px (gross), and of those the ones the
-  // loop did not report (lock_lost false), both as a share of all frames.
+  // loop claimed to hold the view (Step::off_target false: lock held, match trusted, measured
+  // within FixationOptions::off_target_px), both as a share of all frames. A dropped frame
+  // keeps the previous frame's claim.
   double gross_pct = 0;
   double silent_gross_pct = 0;
-  double dropped_pct = 0;  // [%] frames the camera lost (world.frame_drops)
+  // [%] the gross frames with lock_lost false alone (the first reading, which also
+  // counts the frames where the loop knew and said it was off target), of all frames.
+  double gross_lock_held_pct = 0;
+  double off_target_pct = 0;  // [%] frames the loop said it was off target (lost included)
+  double dropped_pct = 0;     // [%] frames the camera lost (world.frame_drops)
   // [px] RMS of the measured displacement's miss (measured − true) over the frames with a
   // match: what image disturbances (roll, blur, exposure) cost the matcher.
   double measurement_rms_px = 0;
@@ -99,6 +105,8 @@ struct ClosedLoopFigures {
   std::vector<cv::Point2d> view_offsets;  // [px] ViewOffset of each processed frame
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)
   std::vector<double> measured_y;         // [px] measured displacement y (NaN: not found)
+  std::vector<bool> lock_lost;            // Step::lock_lost of each frame (dropped: standing)
+  std::vector<bool> off_target;           // Step::off_target of each frame (dropped: standing)
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
   std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
   std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)

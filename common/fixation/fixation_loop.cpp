@@ -39,6 +39,9 @@ bool FixationOptions::IsValid(std::string* error) const {
     return fail("lock-regain confidence must be in [lock-lost confidence, 1], got " +
                 std::to_string(lock_regain_confidence));
   }
+  if (!(off_target_px > 0)) {
+    return fail("off-target distance must be > 0 px, got " + std::to_string(off_target_px));
+  }
   if (!(lock_regain_px > 0)) {
     return fail("lock-regain distance must be > 0 px, got " + std::to_string(lock_regain_px));
   }
@@ -170,6 +173,11 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   // (its origin, or pyr's coarse cross-axis tolerance), not a measurement to steer by.
   if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
   if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
+
+  // Follow has no stored view to be on or off: its claim is the trusted lock alone.
+  const bool held_view = options_.reference == FixationOptions::Reference::kPrevious ||
+                         std::hypot(displacement.x, displacement.y) <= options_.off_target_px;
+  step.off_target = step.lock_lost || !trusted || !held_view;
 
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     // The view's offset from the first reference is the sum of its frame-to-frame steps;

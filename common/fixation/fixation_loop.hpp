@@ -49,6 +49,13 @@ struct FixationOptions {
   // again (lock_lost false) only once the measured displacement is within this: found 60 px
   // away, the view is not held yet (stored reference only; follow has no such view).
   double lock_regain_px = 10;
+  // [px] The loop says it holds the view (Step::off_target false) only while the lock is held,
+  // this frame's match is trusted and its measured displacement is within this. A right match
+  // that measures the view 25 px away (the loop trailing a gust, the first frames of the
+  // pull-in) is no lost lock, but it is no held view either, and the operator must hear so.
+  // Below the report's 10 px gross threshold by the matcher's miss (0.1-0.5 px RMS in the
+  // simulated worlds) and a margin, so that a frame claimed on target is not 10.3 px off.
+  double off_target_px = 8;
   enum class Reference {
     kStored,    // fixate: every frame is compared with the reference stored by SetReference
     kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
@@ -98,7 +105,10 @@ class FixationLoop {
     // The match steered the servos this frame (confident, and the lock not being re-acquired).
     bool trusted = false;
     bool reacquiring = false;  // the search was widened around the stored reference
-    double loop_us = 0;        // [µs] wall time of this Process call
+    // The loop does not claim to hold the view: the lock is lost, this frame's match is not
+    // trusted, or it measures the view farther than off_target_px (issue 9's honest lock).
+    bool off_target = true;
+    double loop_us = 0;  // [µs] wall time of this Process call
     // What the controller believes after this frame (online deg/px, forecast weight), for
     // telemetry and the flight report; none for a controller that does not learn in flight.
     std::optional<ControlEstimate> estimate;

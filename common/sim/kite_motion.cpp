@@ -1,7 +1,9 @@
 #include "common/sim/kite_motion.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 
@@ -14,19 +16,34 @@ namespace {
 constexpr std::uint64_t kJitterStream = 0x6b6974654a;  // "kiteJ"
 constexpr std::uint64_t kGustStream = 0x6b69746547;    // "kiteG"
 constexpr std::uint64_t kGustSizeStream = 0x6b69746553;
-constexpr std::uint64_t kPhaseStream = 0x6b69746550;     // drift, sway, turbulence phases
-constexpr std::uint64_t kStepGustStream = 0x6b69746554;  // broadband step gusts
+constexpr std::uint64_t kPhaseStream = 0x6b69746550;       // drift, sway, turbulence phases
+constexpr std::uint64_t kStepGustStream = 0x6b69746554;    // broadband step gusts
+constexpr std::uint64_t kTurbulenceStream = 0x6b69746557;  // broadband turbulence's noise
 
 constexpr double kDriftPeriodFrames = 600;       // [frames] how slowly the swing period wanders
 constexpr double kSwayPeriodX = 7.3;             // [swing periods] the slow sway along x
 constexpr double kSwayPeriodY = 11.1;            // [swing periods] and along y
-constexpr int kTurbulenceComponents = 32;        // sinusoids of the spectral representation
 constexpr double kTurbulenceCorner = 1.0 / 150;  // [cycles/frame] Dryden-like corner
 constexpr double kStepRiseFrames = 8;            // [frames] a step gust's 1 − cos rise
 constexpr double kStepDecayFrames = 150;         // [frames] how fast the line drifts back
 
 // Gusts older than this many τ contribute less than e^−40 of their amplitude.
 constexpr double kGustHorizonTaus = 40.0;
+
+// The damped pendulum e'' + 2α·e' + (α² + ω_d²)·e = 0 over one frame, for e = x − w, the
+// view's offset from the rest position w where the wind holds the line (held over the
+// frame): e₁ = c11·e₀ + c12·v₀, v₁ = c21·e₀ + c22·v₀ (exact, not an Euler step).
+struct PendulumStep {
+  double c11, c12, c21, c22;
+};
+
+PendulumStep PendulumOverOneFrame(double alpha, double omega_d) {
+  const double decay = std::exp(-alpha);
+  const double c = std::cos(omega_d), s = std::sin(omega_d);
+  const double omega0_sq = alpha * alpha + omega_d * omega_d;
+  return {decay * (c + alpha / omega_d * s), decay * s / omega_d, -decay * omega0_sq * s / omega_d,
+          decay * (c - alpha / omega_d * s)};
+}
 
 bool Finite(double v) { return std::isfinite(v); }
 
@@ -68,7 +85,20 @@ bool KiteMotionOptions::IsValid(std::string* error) const {
 KiteMotion::KiteMotion(KiteMotionOptions options) : options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("KiteMotion: " + error);
+  if (options_.gusts && options_.gust_model == KiteMotionOptions::GustModel::kBroadband) {
+    StartWind();
+  }
 }
+
+struct KiteMotion::WindResponse {
+  std::mutex mutex;
+  double a = 0;              // [1] the turbulence's per-frame low-pass pole
+  double scale = 0;          // [px] the wind's push per unit of turbulence
+  double turbulence = 0;     // [1] unit-RMS turbulence at the last frame
+  double v = 0;              // [px/frame] the response's velocity at the last frame
+  std::vector<double> wind;  // [px] the wind's push on the rest position, per frame
+  std::vector<double> x;     // [px] the view's response, per frame
+};
 
 double KiteMotion::GustAmplitude(int frame) const {
   if (!options_.gusts || frame < 1) return 0.0;
@@ -100,40 +130,86 @@ double KiteMotion::Phase(double t) const {
   return omega * (t - options_.period_drift / nu * (std::cos(nu * t + phi) - std::cos(phi)));
 }
 
-double KiteMotion::Broadband(int frame) const {
-  const double t = frame;
-  const double two_pi = 2.0 * std::numbers::pi;
-  // Spectral representation of a low-pass turbulence: log-spaced frequencies from 1/3000 to
-  // 1/6 cycles per frame, each with the power S(f)·Δf of S(f) ∝ 1/(1 + (f/fc)²), random
-  // phases. Normalised to RMS ½·gust_amplitude.
-  const double f_lo = 1.0 / 3000, f_hi = 1.0 / 6;
-  const double ratio = std::pow(f_hi / f_lo, 1.0 / (kTurbulenceComponents - 1));
-  double power_sum = 0, x = 0;
-  for (int k = 0; k < kTurbulenceComponents; ++k) {
-    const double f = f_lo * std::pow(ratio, k);
-    const double df = f * (ratio - 1.0);
-    const double power = df / (1.0 + (f / kTurbulenceCorner) * (f / kTurbulenceCorner));
-    power_sum += power;
-    const double phase = two_pi * SimUniform(options_.seed, kPhaseStream, 10 + k);
-    x += std::sqrt(2.0 * power) * std::sin(two_pi * f * t + phase);
-  }
-  x *= 0.5 * options_.gust_amplitude_px / std::sqrt(power_sum);
-  // Step gusts: a smooth push of the line that then drifts back.
-  // Ten decay times: what is left (< 5·10⁻⁵ of the step) is far below a pixel.
+double KiteMotion::StepGusts(int frame) const {
+  // A smooth push of the line's rest position that then drifts back. Ten decay times: what
+  // is left (< 5·10⁻⁵ of the step) is far below a pixel.
   const int horizon = static_cast<int>(std::ceil(10.0 * kStepDecayFrames));
   const double rate = options_.gust_rate_per_frame / 4.0;
+  double w = 0;
   for (int g = std::max(1, frame - horizon); g <= frame; ++g) {
     const double u = SimUniform(options_.seed, kStepGustStream, g);
     if (u >= rate) continue;
     const double size = (u / rate < 0.5 ? -1.0 : 1.0) *
                         (0.5 + 0.5 * SimUniform(options_.seed, kStepGustStream + 1, g));
-    const double age = t - g;
+    const double age = static_cast<double>(frame - g);
     const double rise = age >= kStepRiseFrames
                             ? 1.0
                             : 0.5 * (1.0 - std::cos(std::numbers::pi * age / kStepRiseFrames));
-    x += size * options_.gust_amplitude_px * rise * std::exp(-age / kStepDecayFrames);
+    w += size * options_.gust_amplitude_px * rise * std::exp(-age / kStepDecayFrames);
   }
-  return x;
+  return w;
+}
+
+double KiteMotion::Wind(int frame) const {
+  if (!wind_ || frame < 0) return 0.0;
+  std::lock_guard lock(wind_->mutex);
+  Extend(frame);
+  return wind_->wind[static_cast<std::size_t>(frame)];
+}
+
+double KiteMotion::Broadband(int frame) const {
+  std::lock_guard lock(wind_->mutex);
+  Extend(frame);
+  return wind_->x[static_cast<std::size_t>(frame)];
+}
+
+void KiteMotion::Extend(int frame) const {
+  WindResponse& r = *wind_;
+  const double alpha = 1.0 / options_.decay_frames;
+  while (static_cast<int>(r.x.size()) <= frame) {
+    const auto k = static_cast<int>(r.x.size()) - 1;
+    // The swing's own angular frequency over this frame (the period drift included).
+    const double omega_d = Phase(k + 1.0) - Phase(k);
+    const PendulumStep p = PendulumOverOneFrame(alpha, omega_d);
+    const double w = r.wind.back();  // held over the frame
+    const double e = r.x.back() - w;
+    r.x.push_back(w + p.c11 * e + p.c12 * r.v);
+    r.v = p.c21 * e + p.c22 * r.v;
+    r.turbulence = r.a * r.turbulence + std::sqrt(1.0 - r.a * r.a) *
+                                            SimGaussian(options_.seed, kTurbulenceStream, k + 1);
+    r.wind.push_back(r.scale * r.turbulence + StepGusts(k + 1));
+  }
+}
+
+void KiteMotion::StartWind() {
+  wind_ = std::make_shared<WindResponse>();
+  WindResponse& r = *wind_;
+  r.a = std::exp(-2.0 * std::numbers::pi * kTurbulenceCorner);
+  const PendulumStep p = PendulumOverOneFrame(1.0 / options_.decay_frames,
+                                              2.0 * std::numbers::pi / options_.period_frames);
+  // State [turbulence u (unit RMS), response x, velocity v] over one frame; its stationary
+  // covariance gives the scale that makes the view's response ½·gust_amplitude RMS, and the
+  // flight starts from a draw of it (the wind blew before the first frame).
+  Eigen::Matrix3d a;
+  a << r.a, 0, 0, 1 - p.c11, p.c11, p.c12, -p.c21, p.c21, p.c22;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  covariance(0, 0) = 1.0 - r.a * r.a;
+  // Doubling: after n rounds the sum over 2ⁿ frames; the pendulum forgets in ~τ frames.
+  for (int round = 0; round < 40; ++round) {
+    covariance += a * covariance * a.transpose();
+    a = a * a;
+  }
+  const double sigma_x = std::sqrt(covariance(1, 1));
+  r.scale = sigma_x > 0 ? 0.5 * options_.gust_amplitude_px / sigma_x : 0.0;
+  const Eigen::Matrix3d root = covariance.llt().matrixL();
+  const Eigen::Vector3d start =
+      root * Eigen::Vector3d(SimGaussian(options_.seed, kTurbulenceStream, -1),
+                             SimGaussian(options_.seed, kTurbulenceStream, -2),
+                             SimGaussian(options_.seed, kTurbulenceStream, -3));
+  r.turbulence = start(0);
+  r.x.push_back(r.scale * start(1));
+  r.v = r.scale * start(2);
+  r.wind.push_back(r.scale * r.turbulence + StepGusts(0));
 }
 
 cv::Point2d KiteMotion::LineOfSight(int frame) const {

@@ -44,6 +44,11 @@ LockIndicator::LockIndicator(const LockMonitor& monitor, Size size, QWidget* par
 void LockIndicator::showReading() {
   const LockReading& reading = monitor_.reading();
   Look look = LookOf(reading.verdict);
+  // The agent's own word that it trails the view (a right match, but not held) says more
+  // than "degraded".
+  if (reading.off_target && reading.verdict == LockVerdict::kDegraded) {
+    look.word = tr("OFF TARGET");
+  }
   verdict_text_ = look.word;
   QString text = look.word;
   if (reading.verdict != LockVerdict::kNone) {

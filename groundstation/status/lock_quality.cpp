@@ -77,11 +77,12 @@ const LockReading& LockQuality::add(const kapfix::v1::Telemetry& telemetry) {
   reading_.residual_px = std::sqrt(residual_sq);
   reading_.rms_px = std::sqrt(sum_sq_ / static_cast<double>(samples_.size()));
   reading_.confidence = confidence_sum / std::max(1, confidence_count);
+  reading_.off_target = Tracking(mode_) && !telemetry.lock_lost() && telemetry.off_target();
   if (!Tracking(mode_)) {
     reading_.verdict = LockVerdict::kNone;
   } else if (telemetry.lock_lost() || reading_.rms_px > options_.lost_rms_px) {
     reading_.verdict = LockVerdict::kLost;
-  } else if (reading_.confidence < options_.degraded_confidence ||
+  } else if (telemetry.off_target() || reading_.confidence < options_.degraded_confidence ||
              reading_.rms_px > options_.degraded_rms_px) {
     reading_.verdict = LockVerdict::kDegraded;
   } else {

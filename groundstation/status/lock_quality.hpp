@@ -36,6 +36,9 @@ struct LockReading {
   double residual_px = 0;  // [px] |displacement| of the newest sample
   double rms_px = 0;       // [px] RMS of |displacement| over the window
   double confidence = 0;   // [0..1] mean over the confidence window
+  // The agent says it does not hold the view this frame though the lock is not lost (issue
+  // 9: a right match of a view the loop trails); the verdict is then at best degraded.
+  bool off_target = false;
   // The loop's online calibration and forecast share while tracking (issue 9), e.g.
   // "deg/px 0.1050 ±3 % trusted · forecast 80 %"; empty when the controller keeps none.
   std::string calibration;

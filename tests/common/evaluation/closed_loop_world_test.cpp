@@ -63,8 +63,6 @@ TEST_P(ClosedLoopWorldTest, DegradesTheLoopAgainstTheNominalWorld) {
 INSTANTIATE_TEST_SUITE_P(
     EachDisturbanceAlone, ClosedLoopWorldTest,
     ::testing::Values(
-        Disturbance{"BroadbandGusts",
-                    [](WorldOptions* w) { w->gusts = WorldOptions::Gusts::kBroadband; }, 1.2},
         Disturbance{"PeriodDrift", [](WorldOptions* w) { w->period_drift = 0.3; }, 1.1},
         Disturbance{"Sway", [](WorldOptions* w) { w->sway = true; }, 1.05},
         Disturbance{"Roll", [](WorldOptions* w) { w->roll_deg = 5; }, 1.1,
@@ -75,6 +73,26 @@ INSTANTIATE_TEST_SUITE_P(
         Disturbance{"FrameDrops", [](WorldOptions* w) { w->frame_drops = 0.1; }, 1.1},
         Disturbance{"CalibrationError", [](WorldOptions* w) { w->calibration_error = 1.6; }, 1.1}),
     DisturbanceName);
+
+// Broadband wind replaces the nominal world's same-period gusts, so its baseline is a calm
+// day (gusts off). As a force on the pendulum its response lives mostly at the swing's
+// frequency, which the swing model forecasts: within SPEC §3's 100 px swing it barely shows
+// (aero1, 300 frames, predictive: 3.28 px against 3.40 with the periodic gusts and 3.26 calm;
+// P's error is the swing's and moves either way with the wind's random phase). So the test
+// takes the swing away: on a rig at rest, wind is what the loop must hold against.
+TEST(ClosedLoopWorldTest, BroadbandWindDegradesTheLoopOnARigAtRest) {
+  const auto fly = [](WorldOptions::Gusts gusts) {
+    ClosedLoopOptions options;
+    options.frames = kFrames;
+    options.platform.kite.amplitude_px = 0;
+    options.world.gusts = gusts;
+    return EvaluateClosedLoop(testing::LoadOpenCvPhoto("aero1.jpg"), options);
+  };
+  const ClosedLoopFigures calm = fly(WorldOptions::Gusts::kOff);
+  const ClosedLoopFigures wind = fly(WorldOptions::Gusts::kBroadband);
+  EXPECT_GT(wind.rms_error_x_px, 1.2 * calm.rms_error_x_px)
+      << "wind " << wind.rms_error_x_px << " px in x against calm " << calm.rms_error_x_px;
+}
 
 TEST(ClosedLoopWorldOptionsTest, RefusesAWorldOutOfRangeWithItsFlagInTheReason) {
   ClosedLoopOptions options;

@@ -205,6 +205,42 @@ TEST(FixationLoopTest, AReacquiredViewCountsAsHeldOnlyOnceItIsBack) {
   EXPECT_FALSE(back.lock_lost);
 }
 
+// Issue 9's honest lock: a right match that measures the view 20 px away is no lost lock,
+// but the loop must not claim to hold the view; 3 px away it does.
+TEST(FixationLoopTest, AViewMeasuredBeyondTheOffTargetDistanceIsSaidOffTarget) {
+  FixationOptions o = Options();
+  o.off_target_px = 8;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  const FixationLoop::Step near = loop.Process(testing::Translated(reference, 3, -2), {}, 0.04);
+  ASSERT_TRUE(near.trusted);
+  EXPECT_FALSE(near.off_target);
+  const FixationLoop::Step far = loop.Process(testing::Translated(reference, 20, 0), {}, 0.04);
+  ASSERT_TRUE(far.trusted) << "a right match, it steers";
+  EXPECT_FALSE(far.lock_lost) << "the lock is not lost";
+  EXPECT_TRUE(far.off_target) << "but 20 px off is not a held view";
+}
+
+TEST(FixationLoopTest, AnUntrustedFrameIsNeverClaimedOnTarget) {
+  FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  ConfirmLock(loop, reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  const FixationLoop::Step step = loop.Process(blank, {}, 0.04);
+  ASSERT_FALSE(step.lock_lost) << "a confirmed lock rides out one untrusted frame";
+  EXPECT_TRUE(step.off_target);
+}
+
+TEST(FixationLoopTest, RejectsANonPositiveOffTargetDistance) {
+  FixationOptions o = Options();
+  o.off_target_px = 0;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("off-target distance"), std::string::npos) << error;
+}
+
 TEST(FixationLoopTest, RejectsARegainConfidenceBelowTheLostOne) {
   FixationOptions o = Options();
   o.lock_regain_confidence = o.lock_lost_confidence - 0.05;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
@@ -204,27 +205,74 @@ TEST(KiteMotionTest, SwayAddsASlowMotionOnBothAxesFromRest) {
   EXPECT_LT(largest_step, 1.0);  // slow: under a pixel per frame
 }
 
-TEST(KiteMotionTest, BroadbandGustsAreNotTheSwingsPeriod) {
+KiteMotionOptions BroadbandOnly() {
   KiteMotionOptions o;
   o.amplitude_px = 0;
   o.jitter_sigma_px = 0;
   o.gusts = true;
   o.gust_model = KiteMotionOptions::GustModel::kBroadband;
-  const KiteMotion kite(o);
-  // An AR(2) fitted by least squares explains same-period gusts exactly; broadband
-  // turbulence leaves a residual, and its power sits below the swing's frequency.
-  double slow = 0, at_swing = 0;
-  const int n = 2000;
-  for (const auto& [f, sum] : {std::pair{1.0 / 400, &slow}, std::pair{1.0 / 40, &at_swing}}) {
-    double re = 0, im = 0;
-    for (int t = 0; t < n; ++t) {
-      re += kite.LineOfSight(t).x * std::cos(2 * std::numbers::pi * f * t);
-      im += kite.LineOfSight(t).x * std::sin(2 * std::numbers::pi * f * t);
-    }
-    *sum = std::hypot(re, im);
+  return o;
+}
+
+// |Σ s(t)·hann(t)·e^(−2πift)| over t in [0, n): a series' amplitude at frequency f.
+double AmplitudeAt(const std::function<double(int)>& s, int n, double f) {
+  double re = 0, im = 0;
+  for (int t = 0; t < n; ++t) {
+    const double w = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * t / (n - 1));
+    re += w * s(t) * std::cos(2 * std::numbers::pi * f * t);
+    im += w * s(t) * std::sin(2 * std::numbers::pi * f * t);
   }
-  EXPECT_GT(slow, 3.0 * at_swing);
+  return std::hypot(re, im);
+}
+
+// The wind is a force on the rig, not a displacement of the view: its spectrum is not the
+// swing's (a low-pass with no peak at the swing's frequency), and the view follows it through
+// the pendulum: slow pushes pass (gain ~1 at 1/400 cycles/frame), fast ones are low-passed by
+// the rig's inertia (gain (f₀/f)² ≈ 1/24 at 1/8 cycles/frame for the 40-frame swing; the
+// old model added the turbulence to the view with gain 1 at every frequency).
+TEST(KiteMotionTest, BroadbandWindIsAForceTheRigsInertiaLowPasses) {
+  KiteMotionOptions o = BroadbandOnly();
+  o.gust_rate_per_frame = 0;  // turbulence alone
+  const KiteMotion kite(o);
+  const int n = 4000;
+  const auto wind = [&kite](int t) { return kite.Wind(t); };
+  const auto view = [&kite](int t) { return kite.LineOfSight(t).x; };
+  const double slow = 1.0 / 400, swing = 1.0 / 40, fast = 1.0 / 8;
+  EXPECT_LT(AmplitudeAt(wind, n, swing), AmplitudeAt(wind, n, slow)) << "no peak at the swing";
+  const double slow_gain = AmplitudeAt(view, n, slow) / AmplitudeAt(wind, n, slow);
+  const double fast_gain = AmplitudeAt(view, n, fast) / AmplitudeAt(wind, n, fast);
+  EXPECT_GT(slow_gain, 0.7);
+  EXPECT_LT(slow_gain, 1.5);
+  EXPECT_LT(fast_gain, 0.1);
   EXPECT_TRUE(kite.Gusts(0, n).empty());  // no pendulum impulses in this model
+}
+
+TEST(KiteMotionTest, BroadbandResponseHasTheConfiguredRms) {
+  KiteMotionOptions o = BroadbandOnly();
+  o.gust_rate_per_frame = 0;
+  const KiteMotion kite(o);
+  double sum_sq = 0;
+  const int n = 8000;
+  for (int t = 0; t < n; ++t) sum_sq += std::pow(kite.LineOfSight(t).x, 2);
+  const double rms = std::sqrt(sum_sq / n);
+  EXPECT_GT(rms, 0.6 * 0.5 * o.gust_amplitude_px);
+  EXPECT_LT(rms, 1.5 * 0.5 * o.gust_amplitude_px);
+}
+
+// Integrated frame by frame, the response is still a pure function of (seed, frame): asked out
+// of order, by a copy, or by another instance, the same frame gives the same view.
+TEST(KiteMotionTest, BroadbandResponseIsTheSameInAnyOrder) {
+  const KiteMotion a(BroadbandOnly());
+  const double late = a.LineOfSight(700).x;
+  const double early = a.LineOfSight(100).x;
+  const KiteMotion b(BroadbandOnly());
+  EXPECT_EQ(b.LineOfSight(100).x, early);
+  EXPECT_EQ(b.LineOfSight(700).x, late);
+  const KiteMotion copy = a;  // NOLINT(performance-unnecessary-copy-initialization)
+  EXPECT_EQ(copy.LineOfSight(701).x, b.LineOfSight(701).x);
+  KiteMotionOptions other = BroadbandOnly();
+  other.seed = 2;
+  EXPECT_NE(KiteMotion(other).LineOfSight(100).x, early);
 }
 
 TEST(KiteMotionTest, DriftAndSwayOutOfRangeAreRejected) {

@@ -50,6 +50,22 @@ TEST(LockQuality, AgentsLockLostIsLost) {
   EXPECT_EQ(quality.reading().verdict, LockVerdict::kLost);
 }
 
+// Issue 9: the agent's own word that it trails the view (a right match, lock held, the view
+// beyond its off-target distance) turns an otherwise good reading to off target.
+TEST(LockQuality, AgentsOffTargetIsDegradedAndSaid) {
+  LockQuality quality;
+  for (int i = 0; i < 30; ++i) quality.add(Sample(i, 1));
+  ASSERT_EQ(quality.reading().verdict, LockVerdict::kLocked);
+  kapfix::v1::Telemetry trailing = Sample(30, 1);
+  trailing.set_off_target(true);
+  quality.add(trailing);
+  EXPECT_EQ(quality.reading().verdict, LockVerdict::kDegraded);
+  EXPECT_TRUE(quality.reading().off_target);
+  quality.add(Sample(31, 1));
+  EXPECT_EQ(quality.reading().verdict, LockVerdict::kLocked);
+  EXPECT_FALSE(quality.reading().off_target);
+}
+
 TEST(LockQuality, ThirtyFivePixelResidualIsLostEvenWithoutTheAgentsFlag) {
   LockQuality quality;
   for (int i = 0; i < 60; ++i) quality.add(Sample(i, (i % 2 == 0) ? 35 : -35));
