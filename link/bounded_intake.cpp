@@ -37,6 +37,10 @@ constexpr std::uint64_t kGreetingBytes = 64;  // [bytes] a ZMTP greeting
 // [ms] how often a peer at its budget is looked at again while no report comes.
 constexpr int kPausedPollMs = 100;
 
+std::int64_t Nanoseconds(Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
+
 std::string ErrnoText(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
 // The unix address `fd`'s peer is bound to, as bytes (an abstract one starts with '\0');
@@ -71,8 +75,16 @@ struct PeerShared {
   std::atomic<std::uint64_t> consumed{0};  // [bytes] reported by the agent
   std::atomic<bool> paused{false};         // a report should wake the intake
   std::atomic<bool> disconnect{false};     // the agent asked for the peer to be closed
-  std::string address;                     // "HOST:PORT"
+  // [ns of steady_clock] the agent asked for nothing to be read from the peer before this.
+  std::atomic<std::int64_t> held_until_ns{0};
+  std::string address;  // "HOST:PORT"
 };
+
+// [ms] until the peer's hold ends, rounded up; 0 when it is not held.
+int HeldForMs(const PeerShared& shared, Clock::time_point now) {
+  const std::int64_t left_ns = shared.held_until_ns.load() - Nanoseconds(now);
+  return left_ns <= 0 ? 0 : static_cast<int>((left_ns + 999'999) / 1'000'000);
+}
 
 // Bytes read from one side, waiting to be written to the other.
 struct Pending {
@@ -219,6 +231,7 @@ struct BoundedIntake::Impl {
   std::atomic<std::uint64_t> paused_count{0};
   std::atomic<std::uint64_t> closed_over_budget{0};
   std::atomic<std::uint64_t> open{0};
+  std::atomic<std::uint64_t> held{0};
 
   // Log summary (intake thread only).
   Clock::time_point last_logged{};
@@ -368,9 +381,9 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
     peer.paused = false;
     peer.shared->paused.store(false);
   }
-  // Peer -> agent, within the budget.
+  // Peer -> agent, within the budget, unless the agent holds the peer.
   if ((down_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_up.empty() && !peer.down_eof &&
-      !peer.paused) {
+      !peer.paused && HeldForMs(*peer.shared, now) == 0) {
     const std::uint64_t room = Room(peer);
     if (room > 0) {
       std::uint64_t got = 0;
@@ -415,8 +428,13 @@ void BoundedIntake::Impl::Run() {
     const bool accepting = Clock::now() >= accept_paused_until;
     fds.push_back({listener, static_cast<short>(accepting ? POLLIN : 0), 0});
     bool any_paused = !accepting;
+    int timeout_ms = -1;  // none: only a held peer's end or a pause needs a timeout
+    const Clock::time_point polled_at = Clock::now();
     for (Peer& peer : peers) {
-      const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused && Room(peer) > 0;
+      const int held_ms = HeldForMs(*peer.shared, polled_at);
+      if (held_ms > 0 && (timeout_ms < 0 || held_ms < timeout_ms)) timeout_ms = held_ms;
+      const bool reading =
+          peer.to_up.empty() && !peer.down_eof && !peer.paused && held_ms == 0 && Room(peer) > 0;
       // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
       // that a paused peer went.
       auto down = static_cast<short>((peer.paused ? POLLRDHUP : 0) | (reading ? POLLIN : 0) |
@@ -428,7 +446,8 @@ void BoundedIntake::Impl::Run() {
       order.push_back(&peer);
       any_paused = any_paused || peer.paused;
     }
-    const int rc = ::poll(fds.data(), fds.size(), any_paused ? kPausedPollMs : -1);
+    if (any_paused && (timeout_ms < 0 || kPausedPollMs < timeout_ms)) timeout_ms = kPausedPollMs;
+    const int rc = ::poll(fds.data(), fds.size(), timeout_ms);
     if (rc < 0 && errno != EINTR) {
       spdlog::error("{}: poll failed: {}", options.what, std::strerror(errno));
       return;
@@ -443,6 +462,7 @@ void BoundedIntake::Impl::Run() {
       const pollfd& up = fds[3 + 2 * i];
       Peer& peer = *order[i];
       // Only peers with something to do: the loop stays cheap with thousands of silent ones.
+      // A held peer is polled for reading again once its hold ended (the next round).
       if (down.revents == 0 && up.revents == 0 && !peer.paused && !peer.shared->disconnect.load()) {
         continue;
       }
@@ -523,6 +543,23 @@ void BoundedIntake::Disconnect(int agent_fd) {
   (void)!::write(impl_->wake, &one, sizeof one);
 }
 
+void BoundedIntake::Hold(int agent_fd, std::chrono::steady_clock::time_point until) {
+  const std::string name = UnixPeerName(agent_fd);
+  if (name.empty()) return;
+  const Clock::time_point latest = Clock::now() + kMaxHold;
+  const std::int64_t until_ns = Nanoseconds(std::min(until, latest));
+  const std::lock_guard lock(impl_->mutex);
+  const auto found = impl_->shared.find(name);
+  if (found == impl_->shared.end()) return;
+  // Never shortens a hold: the latest end asked for stands.
+  std::int64_t held = found->second->held_until_ns.load();
+  while (held < until_ns && !found->second->held_until_ns.compare_exchange_weak(held, until_ns)) {
+  }
+  impl_->held.fetch_add(1);
+  // No wake: the intake looks at the hold before it next reads the peer, and leaves the peer
+  // out of its poll from then on.
+}
+
 std::string BoundedIntake::PeerAddressOf(int agent_fd) const {
   const std::string name = UnixPeerName(agent_fd);
   const std::lock_guard lock(impl_->mutex);
@@ -531,8 +568,9 @@ std::string BoundedIntake::PeerAddressOf(int agent_fd) const {
 }
 
 BoundedIntake::Counters BoundedIntake::counters() const {
-  return {impl_->accepted.load(), impl_->over_connections.load(), impl_->paused_count.load(),
-          impl_->closed_over_budget.load(), impl_->open.load()};
+  return {impl_->accepted.load(),     impl_->over_connections.load(),
+          impl_->paused_count.load(), impl_->closed_over_budget.load(),
+          impl_->open.load(),         impl_->held.load()};
 }
 
 }  // namespace kapfix::link
