@@ -92,8 +92,8 @@ void Station(const std::string& endpoint, const std::optional<CurveKeyPair>& own
       counts.ok.fetch_add(1);
     } else if (decoded.error() == kapfix::v1::ERROR_CODE_RATE_LIMITED) {
       counts.rate_limited.fetch_add(1);
-    } else {
-      counts.other.fetch_add(1);
+    } else if (counts.other.fetch_add(1) == 0) {
+      std::fprintf(stderr, "first other reply: %s\n", decoded.reason().c_str());
     }
   }
 }
@@ -116,7 +116,7 @@ std::filesystem::path WriteConfig(const std::filesystem::path& dir,
   }
   if (no_limit) {
     link["command_rate_per_s"] = 100'000.0;
-    link["command_burst"] = 1'000'000.0;
+    link["command_burst"] = 100'000.0;
     link["all_commands_rate_per_s"] = 100'000.0;
   }
   const std::filesystem::path path = dir / "config.json";

@@ -96,7 +96,10 @@ CommandRateLimit::Decision CommandRateLimit::Take(std::string_view station, Cloc
   if (all_.tokens < 1) {
     decision.reason = "rate limited: the agent takes at most " + Number(options_.all_per_s) +
                       " commands/s from all stations together";
-    decision.retry_at = WhenOneToken(all_.tokens, options_.all_per_s, now);
+    // Not before the station's own next token either: the stations that share the bucket
+    // would otherwise all come back at its next token, and most be refused again.
+    decision.retry_at = std::max(WhenOneToken(all_.tokens, options_.all_per_s, now),
+                                 WhenOneToken(0, options_.station_per_s, now));
     return decision;
   }
   own.tokens -= 1;

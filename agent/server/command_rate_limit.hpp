@@ -47,7 +47,9 @@ class CommandRateLimit {
   struct Decision {
     bool allowed = false;
     std::string reason;  // why not, naming the rate ("rate limited: at most 20 commands/s ...")
-    Clock::time_point retry_at;  // when the bucket that refused has a token again
+    // When the bucket that refused has a token again (the shared one: not before the
+    // station's own token interval).
+    Clock::time_point retry_at;
   };
 
   explicit CommandRateLimit(CommandRateLimitOptions options);

@@ -76,6 +76,16 @@ TEST(CommandRateLimitTest, AllStationsTogetherGetNoMoreThanTheSharedBurst) {
   EXPECT_THAT(refused.reason, HasSubstr("at most 100 commands/s from all stations together"));
 }
 
+TEST(CommandRateLimitTest, SharedRefusalHoldsTheStationForItsOwnTokenInterval) {
+  CommandRateLimit limit(Options(20, 40, 100, 40));
+  const Clock::time_point now{};
+  ASSERT_EQ(TakenUntilRefused(limit, "a", now), 40);
+  const CommandRateLimit::Decision refused = limit.Take("b", now);
+  ASSERT_FALSE(refused.allowed);
+  // The shared bucket has a token in 10 ms, but "b" is not asked back before its own 50 ms.
+  EXPECT_EQ(std::chrono::duration_cast<milliseconds>(refused.retry_at - now), milliseconds(50));
+}
+
 TEST(CommandRateLimitTest, ARefusedCommandTakesNoTokenFromTheSharedBucket) {
   CommandRateLimit limit(Options(1, 2, 1, 3));
   const Clock::time_point now{};
