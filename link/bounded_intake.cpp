@@ -7,6 +7,7 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <spdlog/spdlog.h>
+#include <sys/epoll.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <sys/un.h>
@@ -94,6 +95,18 @@ struct Pending {
   bool empty() const { return begin == end; }
 };
 
+struct Peer;
+
+// What an epoll event names: a peer's descriptor, either side.
+struct PeerSide {
+  Peer* peer;
+  bool up;  // the intake's connection to the agent, else the peer's own
+};
+
+// epoll's event bits are poll's (Linux): the relay computes them once for both.
+static_assert(EPOLLIN == POLLIN && EPOLLOUT == POLLOUT && EPOLLRDHUP == POLLRDHUP &&
+              EPOLLHUP == POLLHUP && EPOLLERR == POLLERR);
+
 struct Peer {
   int down = -1;     // the TCP connection from the peer
   int up = -1;       // the intake's connection to the agent
@@ -110,6 +123,12 @@ struct Peer {
   Clock::time_point credited_at;
   bool paused = false;
   Clock::time_point paused_since;
+  // epoll: the tags its descriptors are registered with, and what each waits for now.
+  PeerSide down_tag{this, false};
+  PeerSide up_tag{this, true};
+  bool watched = false;
+  std::uint32_t down_events = 0;
+  std::uint32_t up_events = 0;
 };
 
 // Reads what `from` has into `into` (at most `limit` bytes); false on end of stream or error.
@@ -204,6 +223,8 @@ struct BoundedIntake::Impl {
   explicit Impl(BoundedIntakeOptions opts) : options(std::move(opts)) {}
 
   void Run();
+  std::pair<std::uint32_t, std::uint32_t> Interest(const Peer& peer, Clock::time_point now) const;
+  void Watch(Peer& peer, Clock::time_point now);
   void Accept(Clock::time_point now);
   bool ConnectUp(Peer& peer);
   void Service(Peer& peer, short down_events, short up_events, Clock::time_point now);
@@ -214,7 +235,10 @@ struct BoundedIntake::Impl {
 
   const BoundedIntakeOptions options;
   int listener = -1;
-  int wake = -1;  // eventfd: Stop() and reports for paused peers
+  int wake = -1;             // eventfd: Stop() and reports for paused peers
+  int epoll = -1;            // the wake, the listener and both descriptors of every peer
+  bool listening = false;    // intake thread only: the listener is watched for EPOLLIN
+  bool timed_peers = false;  // intake thread only: a peer is paused or held
   std::atomic<bool> stopping{false};
   std::thread thread;
   std::uint64_t next_name = 0;
@@ -360,7 +384,9 @@ void BoundedIntake::Impl::Accept(Clock::time_point now) {
       }
       Close(peer);
       --live;
+      continue;
     }
+    Watch(peer, now);
   }
 }
 
@@ -418,59 +444,119 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
   }
 }
 
+// What the intake waits for on each of the peer's descriptors now (poll(2) bits, which are
+// epoll's too).
+std::pair<std::uint32_t, std::uint32_t> BoundedIntake::Impl::Interest(const Peer& peer,
+                                                                      Clock::time_point now) const {
+  const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused &&
+                       HeldForMs(*peer.shared, now) == 0 && Room(peer) > 0;
+  // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells that
+  // a paused peer went.
+  const std::uint32_t down = (peer.paused ? POLLRDHUP : 0U) | (reading ? POLLIN : 0U) |
+                             (peer.to_down.empty() ? 0U : POLLOUT);
+  const std::uint32_t up =
+      (peer.to_down.empty() && !peer.up_eof ? POLLIN : 0U) | (peer.to_up.empty() ? 0U : POLLOUT);
+  return {down, up};
+}
+
+// Registers the peer's descriptors with epoll, or changes what they wait for.
+void BoundedIntake::Impl::Watch(Peer& peer, Clock::time_point now) {
+  if (peer.closed) return;
+  const auto [down, up] = Interest(peer, now);
+  const auto watch = [&](int fd, std::uint32_t events, std::uint32_t& current, void* tag) {
+    if (peer.watched && events == current) return;
+    epoll_event event{};
+    event.events = events;
+    event.data.ptr = tag;
+    (void)::epoll_ctl(epoll, peer.watched ? EPOLL_CTL_MOD : EPOLL_CTL_ADD, fd, &event);
+    current = events;
+  };
+  watch(peer.down, down, peer.down_events, &peer.down_tag);
+  watch(peer.up, up, peer.up_events, &peer.up_tag);
+  peer.watched = true;
+}
+
 void BoundedIntake::Impl::Run() {
-  std::vector<pollfd> fds;
-  std::vector<Peer*> order;
+  constexpr int kMaxEvents = 256;
+  std::array<epoll_event, kMaxEvents> events{};
+  // Peers with events in this round, and the events per peer (down, up).
+  std::unordered_map<Peer*, std::pair<short, short>> ready;
   while (!stopping.load()) {
-    fds.clear();
-    order.clear();
-    fds.push_back({wake, POLLIN, 0});
-    const bool accepting = Clock::now() >= accept_paused_until;
-    fds.push_back({listener, static_cast<short>(accepting ? POLLIN : 0), 0});
-    bool any_paused = !accepting;
-    int timeout_ms = -1;  // none: only a held peer's end or a pause needs a timeout
+    // Only a paused or held peer needs a timeout; looking for them is O(peers), and only
+    // while one of them is (a flood held at its rate, a peer at its budget).
     const Clock::time_point polled_at = Clock::now();
-    for (Peer& peer : peers) {
-      const int held_ms = HeldForMs(*peer.shared, polled_at);
-      if (held_ms > 0 && (timeout_ms < 0 || held_ms < timeout_ms)) timeout_ms = held_ms;
-      const bool reading =
-          peer.to_up.empty() && !peer.down_eof && !peer.paused && held_ms == 0 && Room(peer) > 0;
-      // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
-      // that a paused peer went.
-      auto down = static_cast<short>((peer.paused ? POLLRDHUP : 0) | (reading ? POLLIN : 0) |
-                                     (peer.to_down.empty() ? 0 : POLLOUT));
-      auto up = static_cast<short>((peer.to_down.empty() && !peer.up_eof ? POLLIN : 0) |
-                                   (peer.to_up.empty() ? 0 : POLLOUT));
-      fds.push_back({peer.down, down, 0});
-      fds.push_back({peer.up, up, 0});
-      order.push_back(&peer);
-      any_paused = any_paused || peer.paused;
+    const bool accepting = polled_at >= accept_paused_until;
+    int timeout_ms = accepting ? -1 : kPausedPollMs;
+    if (timed_peers) {
+      for (const Peer& peer : peers) {
+        const int held_ms = HeldForMs(*peer.shared, polled_at);
+        const int wait_ms = peer.paused ? kPausedPollMs : held_ms;
+        if (wait_ms > 0 && (timeout_ms < 0 || wait_ms < timeout_ms)) timeout_ms = wait_ms;
+      }
     }
-    if (any_paused && (timeout_ms < 0 || kPausedPollMs < timeout_ms)) timeout_ms = kPausedPollMs;
-    const int rc = ::poll(fds.data(), fds.size(), timeout_ms);
-    if (rc < 0 && errno != EINTR) {
-      spdlog::error("{}: poll failed: {}", options.what, std::strerror(errno));
+    if (accepting != listening) {
+      epoll_event event{};
+      event.events = accepting ? EPOLLIN : 0U;
+      event.data.ptr = &listener;
+      (void)::epoll_ctl(epoll, EPOLL_CTL_MOD, listener, &event);
+      listening = accepting;
+    }
+    const int n = ::epoll_wait(epoll, events.data(), kMaxEvents, timeout_ms);
+    if (n < 0 && errno != EINTR) {
+      spdlog::error("{}: epoll_wait failed: {}", options.what, std::strerror(errno));
       return;
     }
     const Clock::time_point now = Clock::now();
-    if ((fds[0].revents & POLLIN) != 0) {
-      std::uint64_t count = 0;
-      (void)!::read(wake, &count, sizeof count);
+    bool woken = false;
+    bool accept_ready = false;
+    ready.clear();
+    for (int i = 0; i < n; ++i) {
+      void* tag = events[static_cast<std::size_t>(i)].data.ptr;
+      const auto got = static_cast<short>(events[static_cast<std::size_t>(i)].events);
+      if (tag == &wake) {
+        std::uint64_t count = 0;
+        (void)!::read(wake, &count, sizeof count);
+        woken = true;
+      } else if (tag == &listener) {
+        accept_ready = (got & POLLIN) != 0;
+      } else {
+        const auto* side = static_cast<const PeerSide*>(tag);
+        auto& entry = ready[side->peer];
+        (side->up ? entry.second : entry.first) |= got;
+      }
     }
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const pollfd& down = fds[2 + 2 * i];
-      const pollfd& up = fds[3 + 2 * i];
-      Peer& peer = *order[i];
-      // Only peers with something to do: the loop stays cheap with thousands of silent ones.
-      // A held peer is polled for reading again once its hold ended (the next round).
-      if (down.revents == 0 && up.revents == 0 && !peer.paused && !peer.shared->disconnect.load()) {
+    // A wake (a report for a paused peer, a disconnect) or a timeout: look at every peer that
+    // may have something to do without an event of its own.
+    if (woken || timed_peers || n == 0) {
+      for (Peer& peer : peers) {
+        if (peer.paused || peer.shared->disconnect.load() ||
+            peer.shared->held_until_ns.load() != 0) {
+          ready.try_emplace(&peer, 0, 0);
+        }
+      }
+    }
+    for (auto& [peer, got] : ready) {
+      if (peer->closed) continue;
+      Service(*peer, got.first, got.second, now);
+      Watch(*peer, now);
+    }
+    if (accept_ready) Accept(now);
+    timed_peers = false;
+    for (auto it = peers.begin(); it != peers.end();) {
+      if (it->closed) {
+        it = peers.erase(it);
         continue;
       }
-      Service(peer, down.revents, up.revents, now);
-    }
-    if ((fds[1].revents & POLLIN) != 0) Accept(now);
-    for (auto it = peers.begin(); it != peers.end();) {
-      it = it->closed ? peers.erase(it) : std::next(it);
+      // A hold that has ended is cleared, so the peer stops being looked at without events.
+      if (it->shared->held_until_ns.load() != 0 && HeldForMs(*it->shared, now) == 0) {
+        std::int64_t until_ns = it->shared->held_until_ns.load();
+        if (until_ns <= Nanoseconds(now)) {
+          (void)it->shared->held_until_ns.compare_exchange_strong(until_ns, 0);
+        }
+        Watch(*it, now);
+      }
+      timed_peers = timed_peers || it->paused || it->shared->held_until_ns.load() != 0;
+      it = std::next(it);
     }
     open.store(peers.size());
   }
@@ -487,10 +573,24 @@ std::string BoundedIntake::Start() {
   if (!impl_->options.IsValid(&why)) throw std::runtime_error(impl_->options.what + ": " + why);
   impl_->listener = Listen(impl_->options.public_endpoint);
   impl_->wake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-  if (impl_->wake < 0) {
+  impl_->epoll = ::epoll_create1(EPOLL_CLOEXEC);
+  epoll_event wake_event{};
+  wake_event.events = EPOLLIN;
+  wake_event.data.ptr = &impl_->wake;
+  epoll_event listen_event{};
+  listen_event.events = EPOLLIN;
+  listen_event.data.ptr = &impl_->listener;
+  if (impl_->wake < 0 || impl_->epoll < 0 ||
+      ::epoll_ctl(impl_->epoll, EPOLL_CTL_ADD, impl_->wake, &wake_event) != 0 ||
+      ::epoll_ctl(impl_->epoll, EPOLL_CTL_ADD, impl_->listener, &listen_event) != 0) {
+    const std::string failure = ErrnoText("eventfd or epoll");
     ::close(impl_->listener);
-    throw std::runtime_error(ErrnoText("eventfd"));
+    if (impl_->wake >= 0) ::close(impl_->wake);
+    if (impl_->epoll >= 0) ::close(impl_->epoll);
+    impl_->listener = impl_->wake = impl_->epoll = -1;
+    throw std::runtime_error(failure);
   }
+  impl_->listening = true;
   sockaddr_storage bound{};
   socklen_t size = sizeof bound;
   ::getsockname(impl_->listener, reinterpret_cast<sockaddr*>(&bound), &size);
@@ -510,7 +610,8 @@ void BoundedIntake::Stop() {
   impl_->open.store(0);
   ::close(impl_->listener);
   ::close(impl_->wake);
-  impl_->listener = impl_->wake = -1;
+  ::close(impl_->epoll);
+  impl_->listener = impl_->wake = impl_->epoll = -1;
 }
 
 void BoundedIntake::Consumed(int agent_fd, std::uint64_t wire_bytes) {

@@ -5,7 +5,7 @@
 // libzmq assembles a whole multipart message in its pipe before the application sees its first
 // frame (ZMQ_MAXMSGSIZE is per frame, ZMQ_RCVHWM counts whole messages), so a peer that sends
 // frames and never the last one makes the agent hold all it sends. The intake accepts the
-// public TCP endpoint itself, on its own poll() thread, and relays each peer's bytes, untouched
+// public TCP endpoint itself, on its own epoll thread, and relays each peer's bytes, untouched
 // (CurveZMQ stays end to end), over a connection of its own to the agent's socket, which binds
 // a unix socket in a directory only the agent's user can enter. Per peer it counts the bytes
 // relayed to the agent; the agent reports, for each message it receives, the bytes that message
