@@ -119,7 +119,7 @@ std::filesystem::path WriteConfig(const std::filesystem::path& dir,
     link["command_burst"] = 100'000.0;
     link["all_commands_rate_per_s"] = 100'000.0;
   }
-  const std::filesystem::path path = dir / "config.json";
+  std::filesystem::path path = dir / "config.json";
   std::ofstream(path) << nlohmann::json{{"link", link}}.dump(2);
   return path;
 }

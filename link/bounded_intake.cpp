@@ -225,6 +225,8 @@ struct BoundedIntake::Impl {
   void Run();
   std::pair<std::uint32_t, std::uint32_t> Interest(const Peer& peer, Clock::time_point now) const;
   void Watch(Peer& peer, Clock::time_point now);
+  int NextTimeoutMs(Clock::time_point now);
+  void Sweep(Clock::time_point now);
   void Accept(Clock::time_point now);
   bool ConnectUp(Peer& peer);
   void Service(Peer& peer, short down_events, short up_events, Clock::time_point now);
@@ -476,32 +478,55 @@ void BoundedIntake::Impl::Watch(Peer& peer, Clock::time_point now) {
   peer.watched = true;
 }
 
+// [ms] how long the next wait may last (-1: until an event); watches the listener again once
+// accepting may resume. Only a paused or held peer needs a timeout; looking for them is
+// O(peers), and only while one of them is (a flood held at its rate, a peer at its budget).
+int BoundedIntake::Impl::NextTimeoutMs(Clock::time_point now) {
+  const bool accepting = now >= accept_paused_until;
+  int timeout_ms = accepting ? -1 : kPausedPollMs;
+  if (timed_peers) {
+    for (const Peer& peer : peers) {
+      const int wait_ms = peer.paused ? kPausedPollMs : HeldForMs(*peer.shared, now);
+      if (wait_ms > 0 && (timeout_ms < 0 || wait_ms < timeout_ms)) timeout_ms = wait_ms;
+    }
+  }
+  if (accepting != listening) {
+    epoll_event event{};
+    event.events = accepting ? EPOLLIN : 0U;
+    event.data.ptr = &listener;
+    (void)::epoll_ctl(epoll, EPOLL_CTL_MOD, listener, &event);
+    listening = accepting;
+  }
+  return timeout_ms;
+}
+
+// After a round: forgets closed peers, clears ended holds (and watches those peers for
+// reading again), and notes whether any peer is still paused or held.
+void BoundedIntake::Impl::Sweep(Clock::time_point now) {
+  timed_peers = false;
+  for (auto it = peers.begin(); it != peers.end();) {
+    if (it->closed) {
+      it = peers.erase(it);
+      continue;
+    }
+    std::int64_t until_ns = it->shared->held_until_ns.load();
+    if (until_ns != 0 && until_ns <= Nanoseconds(now)) {
+      (void)it->shared->held_until_ns.compare_exchange_strong(until_ns, 0);
+      Watch(*it, now);
+    }
+    timed_peers = timed_peers || it->paused || it->shared->held_until_ns.load() != 0;
+    it = std::next(it);
+  }
+  open.store(peers.size());
+}
+
 void BoundedIntake::Impl::Run() {
   constexpr int kMaxEvents = 256;
   std::array<epoll_event, kMaxEvents> events{};
-  // Peers with events in this round, and the events per peer (down, up).
+  // Peers with something to do in this round, and their events (down, up).
   std::unordered_map<Peer*, std::pair<short, short>> ready;
   while (!stopping.load()) {
-    // Only a paused or held peer needs a timeout; looking for them is O(peers), and only
-    // while one of them is (a flood held at its rate, a peer at its budget).
-    const Clock::time_point polled_at = Clock::now();
-    const bool accepting = polled_at >= accept_paused_until;
-    int timeout_ms = accepting ? -1 : kPausedPollMs;
-    if (timed_peers) {
-      for (const Peer& peer : peers) {
-        const int held_ms = HeldForMs(*peer.shared, polled_at);
-        const int wait_ms = peer.paused ? kPausedPollMs : held_ms;
-        if (wait_ms > 0 && (timeout_ms < 0 || wait_ms < timeout_ms)) timeout_ms = wait_ms;
-      }
-    }
-    if (accepting != listening) {
-      epoll_event event{};
-      event.events = accepting ? EPOLLIN : 0U;
-      event.data.ptr = &listener;
-      (void)::epoll_ctl(epoll, EPOLL_CTL_MOD, listener, &event);
-      listening = accepting;
-    }
-    const int n = ::epoll_wait(epoll, events.data(), kMaxEvents, timeout_ms);
+    const int n = ::epoll_wait(epoll, events.data(), kMaxEvents, NextTimeoutMs(Clock::now()));
     if (n < 0 && errno != EINTR) {
       spdlog::error("{}: epoll_wait failed: {}", options.what, std::strerror(errno));
       return;
@@ -511,22 +536,21 @@ void BoundedIntake::Impl::Run() {
     bool accept_ready = false;
     ready.clear();
     for (int i = 0; i < n; ++i) {
-      void* tag = events[static_cast<std::size_t>(i)].data.ptr;
-      const auto got = static_cast<short>(events[static_cast<std::size_t>(i)].events);
-      if (tag == &wake) {
+      const epoll_event& event = events[static_cast<std::size_t>(i)];
+      if (event.data.ptr == &wake) {
         std::uint64_t count = 0;
         (void)!::read(wake, &count, sizeof count);
         woken = true;
-      } else if (tag == &listener) {
-        accept_ready = (got & POLLIN) != 0;
+      } else if (event.data.ptr == &listener) {
+        accept_ready = (event.events & EPOLLIN) != 0;
       } else {
-        const auto* side = static_cast<const PeerSide*>(tag);
+        const auto* side = static_cast<const PeerSide*>(event.data.ptr);
         auto& entry = ready[side->peer];
-        (side->up ? entry.second : entry.first) |= got;
+        (side->up ? entry.second : entry.first) |= static_cast<short>(event.events);
       }
     }
-    // A wake (a report for a paused peer, a disconnect) or a timeout: look at every peer that
-    // may have something to do without an event of its own.
+    // A wake (a report for a paused peer, a disconnect) or a timeout: every peer that may
+    // have something to do without an event of its own.
     if (woken || timed_peers || n == 0) {
       for (Peer& peer : peers) {
         if (peer.paused || peer.shared->disconnect.load() ||
@@ -541,24 +565,7 @@ void BoundedIntake::Impl::Run() {
       Watch(*peer, now);
     }
     if (accept_ready) Accept(now);
-    timed_peers = false;
-    for (auto it = peers.begin(); it != peers.end();) {
-      if (it->closed) {
-        it = peers.erase(it);
-        continue;
-      }
-      // A hold that has ended is cleared, so the peer stops being looked at without events.
-      if (it->shared->held_until_ns.load() != 0 && HeldForMs(*it->shared, now) == 0) {
-        std::int64_t until_ns = it->shared->held_until_ns.load();
-        if (until_ns <= Nanoseconds(now)) {
-          (void)it->shared->held_until_ns.compare_exchange_strong(until_ns, 0);
-        }
-        Watch(*it, now);
-      }
-      timed_peers = timed_peers || it->paused || it->shared->held_until_ns.load() != 0;
-      it = std::next(it);
-    }
-    open.store(peers.size());
+    Sweep(now);
   }
 }
 
