@@ -95,8 +95,8 @@ Reply CommandIntake::Check(std::string_view sender, std::optional<std::string_vi
   }
   station_heard = true;
   try {
-    return validator_.Validate(command, ValidationNeedsState(command) ? control_.State()
-                                                                      : kapfix::v1::AgentState());
+    return validator_.Validate(
+        command, ValidationNeedsState(command) ? control_.State() : kapfix::v1::AgentState());
   } catch (const std::exception& failure) {
     reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
     reply.set_reason(std::string("the agent could not report its state: ") + failure.what());
