@@ -422,6 +422,12 @@ void Agent::StartCommandServer(const std::optional<kapfix::link::CurveServerKeys
   server_options.curve = curve;
   server_options.max_connections = budget;
   server_options.replay->state_file = std::filesystem::path(config_.state_dir) / "replay_horizon";
+  server_options.rate_limit = CommandRateLimitOptions{
+      .station_per_s = config_.link.command_rate_per_s,
+      .station_burst = config_.link.command_burst,
+      .all_per_s = config_.link.all_commands_rate_per_s,
+      .all_burst = 2 * config_.link.all_commands_rate_per_s,
+  };
   recording_control_ = std::make_unique<RecordingControl>(*executor_, *resume_recorder_);
   server_ = std::make_unique<CommandServer>(*recording_control_, server_options);
   stream_endpoint_ = publisher_->Start();

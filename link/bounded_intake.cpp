@@ -7,6 +7,7 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <spdlog/spdlog.h>
+#include <sys/epoll.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <sys/un.h>
@@ -36,6 +37,10 @@ constexpr std::size_t kBufferBytes =
 constexpr std::uint64_t kGreetingBytes = 64;  // [bytes] a ZMTP greeting
 // [ms] how often a peer at its budget is looked at again while no report comes.
 constexpr int kPausedPollMs = 100;
+
+std::int64_t Nanoseconds(Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
 
 std::string ErrnoText(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
@@ -71,8 +76,16 @@ struct PeerShared {
   std::atomic<std::uint64_t> consumed{0};  // [bytes] reported by the agent
   std::atomic<bool> paused{false};         // a report should wake the intake
   std::atomic<bool> disconnect{false};     // the agent asked for the peer to be closed
-  std::string address;                     // "HOST:PORT"
+  // [ns of steady_clock] the agent asked for nothing to be read from the peer before this.
+  std::atomic<std::int64_t> held_until_ns{0};
+  std::string address;  // "HOST:PORT"
 };
+
+// [ms] until the peer's hold ends, rounded up; 0 when it is not held.
+int HeldForMs(const PeerShared& shared, Clock::time_point now) {
+  const std::int64_t left_ns = shared.held_until_ns.load() - Nanoseconds(now);
+  return left_ns <= 0 ? 0 : static_cast<int>((left_ns + 999'999) / 1'000'000);
+}
 
 // Bytes read from one side, waiting to be written to the other.
 struct Pending {
@@ -81,6 +94,18 @@ struct Pending {
   std::size_t end = 0;
   bool empty() const { return begin == end; }
 };
+
+struct Peer;
+
+// What an epoll event names: a peer's descriptor, either side.
+struct PeerSide {
+  Peer* peer;
+  bool up;  // the intake's connection to the agent, else the peer's own
+};
+
+// epoll's event bits are poll's (Linux): the relay computes them once for both.
+static_assert(EPOLLIN == POLLIN && EPOLLOUT == POLLOUT && EPOLLRDHUP == POLLRDHUP &&
+              EPOLLHUP == POLLHUP && EPOLLERR == POLLERR);
 
 struct Peer {
   int down = -1;     // the TCP connection from the peer
@@ -98,6 +123,12 @@ struct Peer {
   Clock::time_point credited_at;
   bool paused = false;
   Clock::time_point paused_since;
+  // epoll: the tags its descriptors are registered with, and what each waits for now.
+  PeerSide down_tag{this, false};
+  PeerSide up_tag{this, true};
+  bool watched = false;
+  std::uint32_t down_events = 0;
+  std::uint32_t up_events = 0;
 };
 
 // Reads what `from` has into `into` (at most `limit` bytes); false on end of stream or error.
@@ -192,6 +223,10 @@ struct BoundedIntake::Impl {
   explicit Impl(BoundedIntakeOptions opts) : options(std::move(opts)) {}
 
   void Run();
+  std::pair<std::uint32_t, std::uint32_t> Interest(const Peer& peer, Clock::time_point now) const;
+  void Watch(Peer& peer, Clock::time_point now);
+  int NextTimeoutMs(Clock::time_point now);
+  void Sweep(Clock::time_point now);
   void Accept(Clock::time_point now);
   bool ConnectUp(Peer& peer);
   void Service(Peer& peer, short down_events, short up_events, Clock::time_point now);
@@ -202,7 +237,10 @@ struct BoundedIntake::Impl {
 
   const BoundedIntakeOptions options;
   int listener = -1;
-  int wake = -1;  // eventfd: Stop() and reports for paused peers
+  int wake = -1;             // eventfd: Stop() and reports for paused peers
+  int epoll = -1;            // the wake, the listener and both descriptors of every peer
+  bool listening = false;    // intake thread only: the listener is watched for EPOLLIN
+  bool timed_peers = false;  // intake thread only: a peer is paused or held
   std::atomic<bool> stopping{false};
   std::thread thread;
   std::uint64_t next_name = 0;
@@ -219,6 +257,7 @@ struct BoundedIntake::Impl {
   std::atomic<std::uint64_t> paused_count{0};
   std::atomic<std::uint64_t> closed_over_budget{0};
   std::atomic<std::uint64_t> open{0};
+  std::atomic<std::uint64_t> held{0};
 
   // Log summary (intake thread only).
   Clock::time_point last_logged{};
@@ -347,7 +386,9 @@ void BoundedIntake::Impl::Accept(Clock::time_point now) {
       }
       Close(peer);
       --live;
+      continue;
     }
+    Watch(peer, now);
   }
 }
 
@@ -368,9 +409,9 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
     peer.paused = false;
     peer.shared->paused.store(false);
   }
-  // Peer -> agent, within the budget.
+  // Peer -> agent, within the budget, unless the agent holds the peer.
   if ((down_events & (POLLIN | POLLHUP | POLLERR)) != 0 && peer.to_up.empty() && !peer.down_eof &&
-      !peer.paused) {
+      !peer.paused && HeldForMs(*peer.shared, now) == 0) {
     const std::uint64_t room = Room(peer);
     if (room > 0) {
       std::uint64_t got = 0;
@@ -405,54 +446,126 @@ void BoundedIntake::Impl::Service(Peer& peer, short down_events, short up_events
   }
 }
 
-void BoundedIntake::Impl::Run() {
-  std::vector<pollfd> fds;
-  std::vector<Peer*> order;
-  while (!stopping.load()) {
-    fds.clear();
-    order.clear();
-    fds.push_back({wake, POLLIN, 0});
-    const bool accepting = Clock::now() >= accept_paused_until;
-    fds.push_back({listener, static_cast<short>(accepting ? POLLIN : 0), 0});
-    bool any_paused = !accepting;
-    for (Peer& peer : peers) {
-      const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused && Room(peer) > 0;
-      // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells
-      // that a paused peer went.
-      auto down = static_cast<short>((peer.paused ? POLLRDHUP : 0) | (reading ? POLLIN : 0) |
-                                     (peer.to_down.empty() ? 0 : POLLOUT));
-      auto up = static_cast<short>((peer.to_down.empty() && !peer.up_eof ? POLLIN : 0) |
-                                   (peer.to_up.empty() ? 0 : POLLOUT));
-      fds.push_back({peer.down, down, 0});
-      fds.push_back({peer.up, up, 0});
-      order.push_back(&peer);
-      any_paused = any_paused || peer.paused;
+// What the intake waits for on each of the peer's descriptors now (poll(2) bits, which are
+// epoll's too).
+std::pair<std::uint32_t, std::uint32_t> BoundedIntake::Impl::Interest(const Peer& peer,
+                                                                      Clock::time_point now) const {
+  const bool reading = peer.to_up.empty() && !peer.down_eof && !peer.paused &&
+                       HeldForMs(*peer.shared, now) == 0 && Room(peer) > 0;
+  // POLLRDHUP only while paused: it stays set once the peer shut down, and is what tells that
+  // a paused peer went.
+  const std::uint32_t down = (peer.paused ? POLLRDHUP : 0U) | (reading ? POLLIN : 0U) |
+                             (peer.to_down.empty() ? 0U : POLLOUT);
+  const std::uint32_t up =
+      (peer.to_down.empty() && !peer.up_eof ? POLLIN : 0U) | (peer.to_up.empty() ? 0U : POLLOUT);
+  return {down, up};
+}
+
+// Registers the peer's descriptors with epoll, or changes what they wait for.
+void BoundedIntake::Impl::Watch(Peer& peer, Clock::time_point now) {
+  if (peer.closed) return;
+  const auto [down, up] = Interest(peer, now);
+  const auto watch = [&](int fd, std::uint32_t events, std::uint32_t& current, void* tag) {
+    if (peer.watched && events == current) return;
+    epoll_event event{};
+    event.events = events;
+    event.data.ptr = tag;
+    (void)::epoll_ctl(epoll, peer.watched ? EPOLL_CTL_MOD : EPOLL_CTL_ADD, fd, &event);
+    current = events;
+  };
+  watch(peer.down, down, peer.down_events, &peer.down_tag);
+  watch(peer.up, up, peer.up_events, &peer.up_tag);
+  peer.watched = true;
+}
+
+// [ms] how long the next wait may last (-1: until an event); watches the listener again once
+// accepting may resume. Only a paused or held peer needs a timeout; looking for them is
+// O(peers), and only while one of them is (a flood held at its rate, a peer at its budget).
+int BoundedIntake::Impl::NextTimeoutMs(Clock::time_point now) {
+  const bool accepting = now >= accept_paused_until;
+  int timeout_ms = accepting ? -1 : kPausedPollMs;
+  if (timed_peers) {
+    for (const Peer& peer : peers) {
+      const int wait_ms = peer.paused ? kPausedPollMs : HeldForMs(*peer.shared, now);
+      if (wait_ms > 0 && (timeout_ms < 0 || wait_ms < timeout_ms)) timeout_ms = wait_ms;
     }
-    const int rc = ::poll(fds.data(), fds.size(), any_paused ? kPausedPollMs : -1);
-    if (rc < 0 && errno != EINTR) {
-      spdlog::error("{}: poll failed: {}", options.what, std::strerror(errno));
+  }
+  if (accepting != listening) {
+    epoll_event event{};
+    event.events = accepting ? EPOLLIN : 0U;
+    event.data.ptr = &listener;
+    (void)::epoll_ctl(epoll, EPOLL_CTL_MOD, listener, &event);
+    listening = accepting;
+  }
+  return timeout_ms;
+}
+
+// After a round: forgets closed peers, clears ended holds (and watches those peers for
+// reading again), and notes whether any peer is still paused or held.
+void BoundedIntake::Impl::Sweep(Clock::time_point now) {
+  timed_peers = false;
+  for (auto it = peers.begin(); it != peers.end();) {
+    if (it->closed) {
+      it = peers.erase(it);
+      continue;
+    }
+    std::int64_t until_ns = it->shared->held_until_ns.load();
+    if (until_ns != 0 && until_ns <= Nanoseconds(now)) {
+      (void)it->shared->held_until_ns.compare_exchange_strong(until_ns, 0);
+      Watch(*it, now);
+    }
+    timed_peers = timed_peers || it->paused || it->shared->held_until_ns.load() != 0;
+    it = std::next(it);
+  }
+  open.store(peers.size());
+}
+
+void BoundedIntake::Impl::Run() {
+  constexpr int kMaxEvents = 256;
+  std::array<epoll_event, kMaxEvents> events{};
+  // Peers with something to do in this round, and their events (down, up).
+  std::unordered_map<Peer*, std::pair<short, short>> ready;
+  while (!stopping.load()) {
+    const int n = ::epoll_wait(epoll, events.data(), kMaxEvents, NextTimeoutMs(Clock::now()));
+    if (n < 0 && errno != EINTR) {
+      spdlog::error("{}: epoll_wait failed: {}", options.what, std::strerror(errno));
       return;
     }
     const Clock::time_point now = Clock::now();
-    if ((fds[0].revents & POLLIN) != 0) {
-      std::uint64_t count = 0;
-      (void)!::read(wake, &count, sizeof count);
-    }
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const pollfd& down = fds[2 + 2 * i];
-      const pollfd& up = fds[3 + 2 * i];
-      Peer& peer = *order[i];
-      // Only peers with something to do: the loop stays cheap with thousands of silent ones.
-      if (down.revents == 0 && up.revents == 0 && !peer.paused && !peer.shared->disconnect.load()) {
-        continue;
+    bool woken = false;
+    bool accept_ready = false;
+    ready.clear();
+    for (int i = 0; i < n; ++i) {
+      const epoll_event& event = events[static_cast<std::size_t>(i)];
+      if (event.data.ptr == &wake) {
+        std::uint64_t count = 0;
+        (void)!::read(wake, &count, sizeof count);
+        woken = true;
+      } else if (event.data.ptr == &listener) {
+        accept_ready = (event.events & EPOLLIN) != 0;
+      } else {
+        const auto* side = static_cast<const PeerSide*>(event.data.ptr);
+        auto& entry = ready[side->peer];
+        (side->up ? entry.second : entry.first) |= static_cast<short>(event.events);
       }
-      Service(peer, down.revents, up.revents, now);
     }
-    if ((fds[1].revents & POLLIN) != 0) Accept(now);
-    for (auto it = peers.begin(); it != peers.end();) {
-      it = it->closed ? peers.erase(it) : std::next(it);
+    // A wake (a report for a paused peer, a disconnect) or a timeout: every peer that may
+    // have something to do without an event of its own.
+    if (woken || timed_peers || n == 0) {
+      for (Peer& peer : peers) {
+        if (peer.paused || peer.shared->disconnect.load() ||
+            peer.shared->held_until_ns.load() != 0) {
+          ready.try_emplace(&peer, 0, 0);
+        }
+      }
     }
-    open.store(peers.size());
+    for (auto& [peer, got] : ready) {
+      if (peer->closed) continue;
+      Service(*peer, got.first, got.second, now);
+      Watch(*peer, now);
+    }
+    if (accept_ready) Accept(now);
+    Sweep(now);
   }
 }
 
@@ -467,10 +580,24 @@ std::string BoundedIntake::Start() {
   if (!impl_->options.IsValid(&why)) throw std::runtime_error(impl_->options.what + ": " + why);
   impl_->listener = Listen(impl_->options.public_endpoint);
   impl_->wake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-  if (impl_->wake < 0) {
+  impl_->epoll = ::epoll_create1(EPOLL_CLOEXEC);
+  epoll_event wake_event{};
+  wake_event.events = EPOLLIN;
+  wake_event.data.ptr = &impl_->wake;
+  epoll_event listen_event{};
+  listen_event.events = EPOLLIN;
+  listen_event.data.ptr = &impl_->listener;
+  if (impl_->wake < 0 || impl_->epoll < 0 ||
+      ::epoll_ctl(impl_->epoll, EPOLL_CTL_ADD, impl_->wake, &wake_event) != 0 ||
+      ::epoll_ctl(impl_->epoll, EPOLL_CTL_ADD, impl_->listener, &listen_event) != 0) {
+    const std::string failure = ErrnoText("eventfd or epoll");
     ::close(impl_->listener);
-    throw std::runtime_error(ErrnoText("eventfd"));
+    if (impl_->wake >= 0) ::close(impl_->wake);
+    if (impl_->epoll >= 0) ::close(impl_->epoll);
+    impl_->listener = impl_->wake = impl_->epoll = -1;
+    throw std::runtime_error(failure);
   }
+  impl_->listening = true;
   sockaddr_storage bound{};
   socklen_t size = sizeof bound;
   ::getsockname(impl_->listener, reinterpret_cast<sockaddr*>(&bound), &size);
@@ -490,7 +617,8 @@ void BoundedIntake::Stop() {
   impl_->open.store(0);
   ::close(impl_->listener);
   ::close(impl_->wake);
-  impl_->listener = impl_->wake = -1;
+  ::close(impl_->epoll);
+  impl_->listener = impl_->wake = impl_->epoll = -1;
 }
 
 void BoundedIntake::Consumed(int agent_fd, std::uint64_t wire_bytes) {
@@ -523,6 +651,23 @@ void BoundedIntake::Disconnect(int agent_fd) {
   (void)!::write(impl_->wake, &one, sizeof one);
 }
 
+void BoundedIntake::Hold(int agent_fd, std::chrono::steady_clock::time_point until) {
+  const std::string name = UnixPeerName(agent_fd);
+  if (name.empty()) return;
+  const Clock::time_point latest = Clock::now() + kMaxHold;
+  const std::int64_t until_ns = Nanoseconds(std::min(until, latest));
+  const std::lock_guard lock(impl_->mutex);
+  const auto found = impl_->shared.find(name);
+  if (found == impl_->shared.end()) return;
+  // Never shortens a hold: the latest end asked for stands.
+  std::int64_t held = found->second->held_until_ns.load();
+  while (held < until_ns && !found->second->held_until_ns.compare_exchange_weak(held, until_ns)) {
+  }
+  impl_->held.fetch_add(1);
+  // No wake: the intake looks at the hold before it next reads the peer, and leaves the peer
+  // out of its poll from then on.
+}
+
 std::string BoundedIntake::PeerAddressOf(int agent_fd) const {
   const std::string name = UnixPeerName(agent_fd);
   const std::lock_guard lock(impl_->mutex);
@@ -531,8 +676,9 @@ std::string BoundedIntake::PeerAddressOf(int agent_fd) const {
 }
 
 BoundedIntake::Counters BoundedIntake::counters() const {
-  return {impl_->accepted.load(), impl_->over_connections.load(), impl_->paused_count.load(),
-          impl_->closed_over_budget.load(), impl_->open.load()};
+  return {impl_->accepted.load(),     impl_->over_connections.load(),
+          impl_->paused_count.load(), impl_->closed_over_budget.load(),
+          impl_->open.load(),         impl_->held.load()};
 }
 
 }  // namespace kapfix::link

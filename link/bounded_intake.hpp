@@ -5,7 +5,7 @@
 // libzmq assembles a whole multipart message in its pipe before the application sees its first
 // frame (ZMQ_MAXMSGSIZE is per frame, ZMQ_RCVHWM counts whole messages), so a peer that sends
 // frames and never the last one makes the agent hold all it sends. The intake accepts the
-// public TCP endpoint itself, on its own poll() thread, and relays each peer's bytes, untouched
+// public TCP endpoint itself, on its own epoll thread, and relays each peer's bytes, untouched
 // (CurveZMQ stays end to end), over a connection of its own to the agent's socket, which binds
 // a unix socket in a directory only the agent's user can enter. Per peer it counts the bytes
 // relayed to the agent; the agent reports, for each message it receives, the bytes that message
@@ -66,6 +66,7 @@ class BoundedIntake {
     std::uint64_t paused = 0;              // [count] times a peer reached its byte budget
     std::uint64_t closed_over_budget = 0;  // [count] closed after over_budget_limit at it
     std::uint64_t open = 0;                // [count] peers now relayed
+    std::uint64_t held = 0;                // [count] holds asked for (Hold)
   };
 
   explicit BoundedIntake(BoundedIntakeOptions options);
@@ -87,6 +88,15 @@ class BoundedIntake {
   // Closes the peer behind `agent_fd` (the agent refuses what it sent), before it can send
   // more. Thread-safe; a descriptor that is none of this intake's is ignored.
   void Disconnect(int agent_fd);
+  // Reads nothing more from the peer behind `agent_fd` until `until` (at most kMaxHold from
+  // now): what it sends meanwhile waits in the kernel's socket buffers, and costs the agent
+  // nothing. The agent holds a station that sends commands faster than its rate until its
+  // next token. Bytes already relayed are still delivered. Thread-safe; a descriptor that is
+  // none of this intake's is ignored.
+  void Hold(int agent_fd, std::chrono::steady_clock::time_point until);
+  // [ms] the longest hold: well under ZeroMQ's heartbeat timeout, so a held station's
+  // PONGs are late, never missed.
+  static constexpr std::chrono::milliseconds kMaxHold{1000};
   // "HOST:PORT" of the peer behind `agent_fd`; empty when it is none of this intake's.
   std::string PeerAddressOf(int agent_fd) const;
 

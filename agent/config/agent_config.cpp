@@ -94,6 +94,9 @@ void ReadLink(ConfigReader& r, LinkConfig* c) {
   r.Read("heartbeat_ms", &c->heartbeat_ms);
   r.Read("curve_secret_key_file", &c->curve_secret_key_file);
   r.Read("curve_authorized_keys_file", &c->curve_authorized_keys_file);
+  r.Read("command_rate_per_s", &c->command_rate_per_s);
+  r.Read("command_burst", &c->command_burst);
+  r.Read("all_commands_rate_per_s", &c->all_commands_rate_per_s);
 }
 
 void ReadAgent(ConfigReader& r, AgentConfig* c) {

@@ -51,6 +51,21 @@ bool LinkConfig::IsValid(std::string* error) const {
   if (heartbeat_ms < 100 || heartbeat_ms > 60000) {
     return fail("link.heartbeat_ms: must be 100…60000 ms, got " + std::to_string(heartbeat_ms));
   }
+  if (!(command_rate_per_s >= 0.1 && command_rate_per_s <= 100'000)) {
+    return fail("link.command_rate_per_s: must be 0.1…100000 commands/s, got " +
+                std::to_string(command_rate_per_s));
+  }
+  if (!(command_burst >= 1 && command_burst <= 1'000'000)) {
+    return fail("link.command_burst: must be 1…1000000 commands, got " +
+                std::to_string(command_burst));
+  }
+  if (!(all_commands_rate_per_s >= command_rate_per_s && all_commands_rate_per_s <= 100'000 &&
+        2 * all_commands_rate_per_s >= command_burst)) {
+    return fail(
+        "link.all_commands_rate_per_s: must be at least link.command_rate_per_s and "
+        "half link.command_burst, at most 100000 commands/s, got " +
+        std::to_string(all_commands_rate_per_s));
+  }
   if (curve_secret_key_file.empty() != curve_authorized_keys_file.empty()) {
     return fail("link.curve_authorized_keys_file: set both CURVE files or neither");
   }

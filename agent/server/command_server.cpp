@@ -1,5 +1,7 @@
 #include "agent/server/command_server.hpp"
 
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/wire_format_lite.h>
 #include <spdlog/spdlog.h>
 
 #include <array>
@@ -62,7 +64,34 @@ struct Request {
   std::vector<zmq::message_t> frames;
   std::size_t frame_count = 0;
   std::int64_t received_us = 0;  // [µs since epoch]
+  int source_fd = -1;            // libzmq's descriptor of its connection (ZMQ_SRCFD)
 };
+
+// header.sequence of a serialized Command, reading its header field only (a refusal before
+// decoding still names the command it answers); 0 when there is none or it does not parse.
+std::uint64_t CommandSequenceOf(std::string_view payload) {
+  using google::protobuf::internal::WireFormatLite;
+  google::protobuf::io::CodedInputStream input(
+      reinterpret_cast<const std::uint8_t*>(payload.data()), static_cast<int>(payload.size()));
+  constexpr int kHeaderField = kapfix::v1::Command::kHeaderFieldNumber;
+  std::uint64_t sequence = 0;
+  while (const std::uint32_t tag = input.ReadTag()) {
+    if (WireFormatLite::GetTagFieldNumber(tag) == kHeaderField &&
+        WireFormatLite::GetTagWireType(tag) == WireFormatLite::WIRETYPE_LENGTH_DELIMITED) {
+      std::uint32_t size = 0;
+      std::string bytes;
+      kapfix::v1::Header header;
+      if (!input.ReadVarint32(&size) || !input.ReadString(&bytes, static_cast<int>(size)) ||
+          !header.ParseFromString(bytes)) {
+        return 0;
+      }
+      sequence = header.sequence();  // the last one wins, as protobuf's merge has it
+    } else if (!WireFormatLite::SkipField(&input, tag)) {
+      return 0;
+    }
+  }
+  return sequence;
+}
 
 // What a request's frames say, and how to address the answer.
 struct Envelope {
@@ -77,12 +106,16 @@ struct CommandServer::Impl {
   Impl(AgentControl& agent, CommandServerOptions opts)
       : options(std::move(opts)),
         intake(agent, options.agent_id, options.limits, options.replay),
-        subscriber_losses(options.subscriber_losses) {}
+        subscriber_losses(options.subscriber_losses) {
+    if (options.rate_limit) rate_limit.emplace(*options.rate_limit);
+  }
 
   void Run(std::promise<std::string> bound);
   void Serve(zmq::socket_t& socket);
   void Handle(zmq::socket_t& socket, const Request& request);
   void HandleCommand(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
+  bool RateLimited(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
+  std::string RateKey(const Request& request) const;
   void HandleHeartbeat(zmq::socket_t& socket, const Request& request, const Envelope& envelope);
   std::string StationName(const Request& request) const;
   void SendReply(zmq::socket_t& socket, const Request& request, const Envelope& envelope,
@@ -93,6 +126,7 @@ struct CommandServer::Impl {
   const CommandServerOptions options;
   CommandIntake intake;  // owned by the server thread
   SubscriberLossBook subscriber_losses;
+  std::optional<CommandRateLimit> rate_limit;  // owned by the server thread; unset: no limit
 
   std::unique_ptr<zmq::context_t> context;
   std::unique_ptr<ZapHandler> zap;             // with CurveZMQ keys only
@@ -102,6 +136,7 @@ struct CommandServer::Impl {
 
   std::atomic<std::uint64_t> commands_ok{0};
   std::atomic<std::uint64_t> commands_refused{0};
+  std::atomic<std::uint64_t> commands_rate_limited{0};
   std::atomic<std::uint64_t> heartbeats_echoed{0};
   std::atomic<std::uint64_t> heartbeats_ignored{0};
   std::atomic<std::int64_t> last_station_heard_us{0};
@@ -164,6 +199,7 @@ void CommandServer::Impl::Serve(zmq::socket_t& socket) {
       request.frame_count =
           link::ReceiveWholeMessage(socket, kMaxFramesKept, &request.frames, &wire);
       binding.Consumed(wire);  // the intake may read this peer's next message
+      request.source_fd = wire.source_fd;
     } catch (const zmq::error_t& error) {
       if (error.num() == ETERM) return;
       continue;  // EINTR (a signal): the partial request is lost, its peer times out
@@ -200,8 +236,40 @@ void CommandServer::Impl::Handle(zmq::socket_t& socket, const Request& request) 
   }
 }
 
+// The station a command is counted against: one a peer cannot multiply by reconnecting.
+std::string CommandServer::Impl::RateKey(const Request& request) const {
+  // CurveZMQ: the station's key (named by the authorised-keys file).
+  if (options.curve) return "key " + StationOf(request.frames.back());
+  // Plain (loopback only, or --insecure): the peer's IP address, which a new connection keeps.
+  // A local process can still bind other 127.x addresses: the shared bucket bounds that.
+  const std::string address = binding.PeerAddressOf(request.source_fd);
+  if (!address.empty()) return "address " + address.substr(0, address.rfind(':'));
+  // No intake (ipc://, inproc://): the connection, which is all there is.
+  return "connection " + std::string(View(request.frames[0]));
+}
+
+// Refuses the command when its station, or all stations together, are over their rate: before
+// anything else is done with it, and without a lock the control loop takes. Behind the intake
+// the station's connection is then not read until its next token, so what it sends meanwhile
+// costs nothing here.
+bool CommandServer::Impl::RateLimited(zmq::socket_t& socket, const Request& request,
+                                      const Envelope& envelope) {
+  if (!rate_limit) return false;
+  const CommandRateLimit::Decision decision =
+      rate_limit->Take(RateKey(request), CommandRateLimit::Clock::now());
+  if (decision.allowed) return false;
+  commands_rate_limited.fetch_add(1);
+  binding.Hold(request.source_fd, decision.retry_at);
+  Reply reply;
+  reply.set_error(kapfix::v1::ERROR_CODE_RATE_LIMITED);
+  reply.set_reason(decision.reason);
+  SendReply(socket, request, envelope, std::move(reply), CommandSequenceOf(envelope.payload));
+  return true;
+}
+
 void CommandServer::Impl::HandleCommand(zmq::socket_t& socket, const Request& request,
                                         const Envelope& envelope) {
+  if (RateLimited(socket, request, envelope)) return;
   // The routing id identifies the station: sequence numbers are checked per connection.
   CommandIntake::Outcome outcome = intake.Answer(
       View(request.frames[0]), envelope.topic, envelope.payload, StationOf(request.frames.back()));
@@ -287,6 +355,10 @@ CommandServer::~CommandServer() { Stop(); }
 
 std::string CommandServer::Start() {
   if (impl_->thread.joinable()) throw std::runtime_error("command server already started");
+  std::string why;
+  if (impl_->options.rate_limit && !impl_->options.rate_limit->IsValid(&why)) {
+    throw std::runtime_error("command server: rate limit: " + why);
+  }
   return StartSocketThread(impl_.get(), "command server");
 }
 
@@ -303,6 +375,7 @@ CommandServer::Counters CommandServer::counters() const {
   Counters counters;
   counters.commands_ok = impl_->commands_ok.load();
   counters.commands_refused = impl_->commands_refused.load();
+  counters.commands_rate_limited = impl_->commands_rate_limited.load();
   counters.heartbeats_echoed = impl_->heartbeats_echoed.load();
   counters.heartbeats_ignored = impl_->heartbeats_ignored.load();
   counters.last_station_heard_us = impl_->last_station_heard_us.load();

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "agent/server/agent_control.hpp"
+#include "agent/server/command_rate_limit.hpp"
 #include "agent/server/command_validator.hpp"
 #include "agent/server/replay_window.hpp"
 #include "agent/server/subscriber_loss_book.hpp"
@@ -61,22 +62,28 @@ struct CommandServerOptions {
       link::IntakeWithBudget(4 * static_cast<std::uint64_t>(4 * kapfix::v1::kMaxCommandBytes));
   // Issue 15: what each station reports lost of the streams in its heartbeats (Heartbeat.lost).
   SubscriberLossBookOptions subscriber_losses;
+  // Issue 15: commands beyond these rates are refused with ERROR_CODE_RATE_LIMITED before
+  // they are decoded or validated, and (behind the intake) the station's connection is not
+  // read again until its bucket has a token, so a flood costs the agent about one refusal per
+  // token interval. Unset: no limit. Must be IsValid (Start() throws otherwise).
+  std::optional<CommandRateLimitOptions> rate_limit = CommandRateLimitOptions{};
 };
 
 class CommandServer {
  public:
   struct Counters {
-    std::uint64_t commands_ok = 0;           // [count] replies with ok = true
-    std::uint64_t commands_refused = 0;      // [count] error replies, whatever the cause
-    std::uint64_t heartbeats_echoed = 0;     // [count] station heartbeats answered
-    std::uint64_t heartbeats_ignored = 0;    // [count] malformed or replayed heartbeats
-    std::int64_t last_station_heard_us = 0;  // [µs since epoch] last accepted command or
-                                             // heartbeat; 0 = never (link-loss detection)
-    std::uint64_t keys_refused = 0;          // [count] CurveZMQ handshakes refused (unknown key)
-    std::uint64_t handshakes_failed = 0;     // [count] ZMTP/CurveZMQ handshakes that failed
-    std::uint64_t over_budget = 0;           // [count] connections shut down over the budget
-    std::uint64_t intake_paused = 0;         // [count] times a peer reached its byte budget
-    std::uint64_t intake_closed = 0;         // [count] peers closed for staying at it
+    std::uint64_t commands_ok = 0;            // [count] replies with ok = true
+    std::uint64_t commands_refused = 0;       // [count] error replies, whatever the cause
+    std::uint64_t commands_rate_limited = 0;  // [count] of those: ERROR_CODE_RATE_LIMITED
+    std::uint64_t heartbeats_echoed = 0;      // [count] station heartbeats answered
+    std::uint64_t heartbeats_ignored = 0;     // [count] malformed or replayed heartbeats
+    std::int64_t last_station_heard_us = 0;   // [µs since epoch] last accepted command or
+                                              // heartbeat; 0 = never (link-loss detection)
+    std::uint64_t keys_refused = 0;           // [count] CurveZMQ handshakes refused (unknown key)
+    std::uint64_t handshakes_failed = 0;      // [count] ZMTP/CurveZMQ handshakes that failed
+    std::uint64_t over_budget = 0;            // [count] connections shut down over the budget
+    std::uint64_t intake_paused = 0;          // [count] times a peer reached its byte budget
+    std::uint64_t intake_closed = 0;          // [count] peers closed for staying at it
   };
 
   // `control` must outlive the server (or at least Stop()).
@@ -87,7 +94,7 @@ class CommandServer {
 
   // Starts the thread, binds, and returns the bound endpoint (ZMQ_LAST_ENDPOINT, e.g.
   // "tcp://127.0.0.1:41234"). Throws std::runtime_error when binding fails (address in use,
-  // bad endpoint) or when already started.
+  // bad endpoint), when the rate limit is not IsValid, or when already started.
   std::string Start();
   // Returns promptly (shuts the server's ZeroMQ context down); idempotent. Requests in flight
   // get no reply.

@@ -67,6 +67,10 @@ void IntakeBinding::Disconnect(int fd) const {
   ::shutdown(fd, SHUT_RDWR);
 }
 
+void IntakeBinding::Hold(int fd, std::chrono::steady_clock::time_point until) const {
+  if (intake_ && fd >= 0) intake_->Hold(fd, until);
+}
+
 std::string IntakeBinding::PeerAddressOf(int fd) const {
   return intake_ ? intake_->PeerAddressOf(fd) : std::string();
 }

@@ -5,6 +5,7 @@
 // (issue 15, item 4): the socket binds a unix socket in a fresh directory only the agent's
 // user can enter (mode 0700), and the intake listens on the endpoint and relays each peer.
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -39,6 +40,9 @@ class IntakeBinding {
   // Ends the connection behind `fd` (ZMQ_SRCFD): at the intake, which then relays nothing more
   // of it, and on libzmq's descriptor (shutdown(), not close(): libzmq frees it).
   void Disconnect(int fd) const;
+  // Reads nothing more of the peer behind `fd` (ZMQ_SRCFD) until `until` (no-op without an
+  // intake): what it sends meanwhile waits in the kernel's socket buffers.
+  void Hold(int fd, std::chrono::steady_clock::time_point until) const;
   // The peer's real address behind `fd` (ZMQ_SRCFD); empty without an intake.
   std::string PeerAddressOf(int fd) const;
   // The intake's counters; zero without one.

@@ -247,6 +247,17 @@ TEST_F(AgentConfigFileTest, AddressWithoutPortIsAnError) {
   EXPECT_NE(error.find("link.command"), std::string::npos) << error;
 }
 
+TEST_F(AgentConfigFileTest, TinyCommandRateIsAnErrorNamingIt) {
+  const std::string error = LoadError(R"({"link": {"command_rate_per_s": 1e-45}})");
+  EXPECT_NE(error.find("link.command_rate_per_s"), std::string::npos) << error;
+}
+
+TEST_F(AgentConfigFileTest, SharedCommandRateBelowAStationsIsAnError) {
+  const std::string error =
+      LoadError(R"({"link": {"command_rate_per_s": 50, "all_commands_rate_per_s": 40}})");
+  EXPECT_NE(error.find("link.all_commands_rate_per_s"), std::string::npos) << error;
+}
+
 TEST_F(AgentConfigFileTest, PartialFileKeepsDefaultsForTheRest) {
   AgentConfig config;
   std::string error;
