@@ -45,8 +45,7 @@ UNCOUNTABLE='name mode camera fps scale channel p i d axis strategy sampling sub
 EXCEPTIONS='
 pixel_pitch_um|also the key of the file'"'"'s lens profiles (lenses[].pixel_pitch_um), which predates the settings object
 set_photo_interval_s|the station'"'"'s photos panel has an editor of its own (on/off and seconds); left: PhotoConfig::interval_s is held and range-checked by hand, not as a message
-window_cap_s|left: the command validator checks window_s against window_cap_s across the current state
-window_s|left: as window_cap_s; also kapfix-agent --shutter-window
+window_s|kapfix-agent --shutter-window (agent/main.cpp) sets it, beside the shutter'"'"'s struct (.hpp) and its use (.cpp)
 deadline_frames|a mode command'"'"'s argument, not only the default: kapfix-ctl ssp sends it (SetMode)
 exposure_ms|left: kapfix-agent --photo-exposure-ms and the agent'"'"'s photo taker read it by hand
 '
