@@ -85,10 +85,11 @@ std::string LoopbackAddress(const std::string& address) {
 // Applies the configured gain and exposure; a camera that refuses them still flies.
 void ApplyCameraSettings(const CameraConfig& camera, FrameSource& source) {
   std::string why;
-  if (camera.gain_db && !source.SetGain(*camera.gain_db, &why)) {
+  const kapfix::v1::CameraSettings& s = camera.settings;
+  if (s.has_gain_db() && !source.SetGain(s.gain_db(), &why)) {
     spdlog::error("camera gain not set: {}", why);
   }
-  if (camera.exposure_us && !source.SetExposure(*camera.exposure_us, &why)) {
+  if (s.has_exposure_us() && !source.SetExposure(s.exposure_us(), &why)) {
     spdlog::error("camera exposure not set: {}", why);
   }
 }

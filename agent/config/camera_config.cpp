@@ -26,6 +26,17 @@ std::string_view ToString(CameraBackend backend) {
   return "?";
 }
 
+void MergeCameraSettings(const kapfix::v1::CameraSettings& from, kapfix::v1::CameraSettings* into) {
+  kapfix::v1::CameraSettings update = from;
+  if (update.has_auto_exposure() && !update.auto_exposure()) update.clear_auto_exposure();
+  if (update.has_auto_exposure()) {
+    update.clear_exposure_us();  // both in one command: automatic, as the later word
+    into->clear_exposure_us();
+  }
+  if (update.has_exposure_us()) into->clear_auto_exposure();
+  kapfix::v1::MergeSettings(update, into);
+}
+
 bool CameraConfig::IsValid(std::string* error) const {
   auto fail = [error](const std::string& message) {
     if (error) *error = message;
@@ -41,12 +52,7 @@ bool CameraConfig::IsValid(std::string* error) const {
     return fail("camera.fps: must be in (0, 1000], got " + std::to_string(fps));
   }
   // The ranges are the schema's (kapfix.v1.CameraSettings), shared with the command validator.
-  const auto& settings = *kapfix::v1::CameraSettings::descriptor();
-  std::string reason;
-  if (gain_db) reason = kapfix::v1::CheckSetting(settings, "gain_db", *gain_db, "camera.gain_db");
-  if (reason.empty() && exposure_us) {
-    reason = kapfix::v1::CheckSetting(settings, "exposure_us", *exposure_us, "camera.exposure_us");
-  }
+  std::string reason = kapfix::v1::CheckSettings(settings, "camera");
   if (!reason.empty()) return fail(reason);
   if (backend == CameraBackend::kV4l2 && !ToV4l2Options().IsValid(&reason)) {
     return fail("camera: " + reason);

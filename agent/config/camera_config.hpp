@@ -6,6 +6,8 @@
 
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
+#include "kapfix/v1/settings.pb.h"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -18,6 +20,11 @@ enum class CameraBackend {
 std::optional<CameraBackend> ParseCameraBackend(std::string_view text);  // sim|v4l2|aravis
 std::string_view ToString(CameraBackend backend);
 
+// A settings command's camera fields merged into the held ones (MergeSettings), where a fixed
+// exposure and automatic exposure exclude each other: the later one counts, and automatic
+// exposure switched off alone changes nothing (there is no exposure to fall back to).
+void MergeCameraSettings(const kapfix::v1::CameraSettings& from, kapfix::v1::CameraSettings* into);
+
 // The "camera" section. Defaults: resources/README.md.
 struct CameraConfig {
   CameraBackend backend = CameraBackend::kSim;
@@ -29,8 +36,9 @@ struct CameraConfig {
   // v4l2: fourcc ("MJPG", "YUYV"); aravis: GenICam pixel format ("Mono8", "BayerRG8");
   // "" = the camera's current setting.
   std::string format;
-  std::optional<double> gain_db;      // [dB] (v4l2: the driver's unit); unset = leave as is
-  std::optional<double> exposure_us;  // [µs] unset = leave the camera's (auto) exposure
+  // The operator's gain and exposure as their kapfix.v1 message: a field unset leaves the
+  // camera's own (its gain, its automatic exposure); v4l2 takes the gain in the driver's unit.
+  kapfix::v1::CameraSettings settings = kapfix::v1::InitialSettings<kapfix::v1::CameraSettings>();
 
   bool IsValid(std::string* error) const;
 

@@ -31,6 +31,15 @@ struct LensProfile {
   // atan(pitch / focal) (same for both axes: square pixels).
   double DegPerPxPan() const;
   double DegPerPxTilt() const;
+
+  // The members a settings command sets, by the names of their settings (kapfix.v1.LensProfile);
+  // deg/px are measured (ApplyCalibration), not set.
+  template <typename Visitor>
+  void VisitFields(Visitor&& visit) {
+    visit("name", name);
+    visit("focal_length_mm", focal_mm);
+    visit("pixel_pitch_um", pixel_pitch_um);
+  }
 };
 
 }  // namespace kapfix::agent

@@ -16,6 +16,32 @@ bool IsWhole(FieldDescriptor::CppType type) {
   return type == FieldDescriptor::CPPTYPE_INT32 || type == FieldDescriptor::CPPTYPE_UINT32;
 }
 
+// The field `name` of `type` a member of C++ type `cpp_type` can be copied to and from;
+// nullptr with `error` set ("<path>: <reason>") when there is none.
+const FieldDescriptor* FindField(const google::protobuf::Descriptor& type, std::string_view name,
+                                 std::string_view cpp_type, std::string* error) {
+  const FieldDescriptor* field = type.FindFieldByName(std::string(name));
+  const std::string path = type.full_name() + "." + std::string(name);
+  if (field == nullptr) {
+    *error = path + ": no such field, but the options struct lists it";
+  } else if (field->is_repeated()) {
+    *error = path + ": a list, not one setting";
+  } else {
+    const FieldDescriptor::CppType t = field->cpp_type();
+    const bool fits =
+        (cpp_type == "double" && (t == FieldDescriptor::CPPTYPE_FLOAT ||
+                                  t == FieldDescriptor::CPPTYPE_DOUBLE || IsWhole(t))) ||
+        (cpp_type == "int" && IsWhole(t)) ||
+        (cpp_type == "bool" && t == FieldDescriptor::CPPTYPE_BOOL) ||
+        (cpp_type == "string" && t == FieldDescriptor::CPPTYPE_STRING) ||
+        (cpp_type == "enum" && t == FieldDescriptor::CPPTYPE_ENUM);
+    if (fits) return field;
+    *error = path + ": a " + field->cpp_type_name() + " cannot be copied into a " +
+             std::string(cpp_type) + " member";
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::string SettingsFieldCopy::Path(std::string_view name) const {
@@ -24,26 +50,7 @@ std::string SettingsFieldCopy::Path(std::string_view name) const {
 
 const FieldDescriptor* SettingsFieldCopy::Find(std::string_view name, std::string_view cpp_type) {
   if (!error_.empty()) return nullptr;
-  const FieldDescriptor* field = settings_.GetDescriptor()->FindFieldByName(std::string(name));
-  const std::string path = Path(name);
-  if (field == nullptr) {
-    error_ = path + ": no such field, but the options struct lists it";
-  } else if (field->is_repeated()) {
-    error_ = path + ": a list, not one setting";
-  } else {
-    const FieldDescriptor::CppType type = field->cpp_type();
-    const bool fits =
-        (cpp_type == "double" && (type == FieldDescriptor::CPPTYPE_FLOAT ||
-                                  type == FieldDescriptor::CPPTYPE_DOUBLE || IsWhole(type))) ||
-        (cpp_type == "int" && IsWhole(type)) ||
-        (cpp_type == "bool" && type == FieldDescriptor::CPPTYPE_BOOL) ||
-        (cpp_type == "string" && type == FieldDescriptor::CPPTYPE_STRING) ||
-        (cpp_type == "enum" && type == FieldDescriptor::CPPTYPE_ENUM);
-    if (fits) return field;
-    error_ = path + ": a " + field->cpp_type_name() + " cannot be copied into a " +
-             std::string(cpp_type) + " member";
-  }
-  return nullptr;
+  return FindField(*settings_.GetDescriptor(), name, cpp_type, &error_);
 }
 
 void SettingsFieldCopy::operator()(std::string_view name, double& value) {
@@ -99,6 +106,64 @@ void SettingsFieldCopy::operator()(std::string_view name, bool& value) {
 void SettingsFieldCopy::operator()(std::string_view name, std::string& value) {
   if (const FieldDescriptor* field = Find(name, "string")) {
     value = settings_.GetReflection()->GetString(settings_, field);
+  }
+}
+
+std::string SettingsFieldWrite::Path(std::string_view name) const {
+  return settings_.GetDescriptor()->full_name() + "." + std::string(name);
+}
+
+const FieldDescriptor* SettingsFieldWrite::Find(std::string_view name, std::string_view cpp_type) {
+  if (!error_.empty()) return nullptr;
+  return FindField(*settings_.GetDescriptor(), name, cpp_type, &error_);
+}
+
+std::string SettingsFieldWrite::WordOf(const google::protobuf::EnumValueDescriptor& value) {
+  return kapfix::v1::SettingWord(value);
+}
+
+void SettingsFieldWrite::operator()(std::string_view name, const double& value) {
+  const FieldDescriptor* field = Find(name, "double");
+  if (field == nullptr) return;
+  const auto& r = *settings_.GetReflection();
+  switch (field->cpp_type()) {
+    case FieldDescriptor::CPPTYPE_FLOAT:
+      r.SetFloat(&settings_, field, static_cast<float>(value));
+      break;
+    case FieldDescriptor::CPPTYPE_DOUBLE:
+      r.SetDouble(&settings_, field, value);
+      break;
+    case FieldDescriptor::CPPTYPE_INT32:
+      r.SetInt32(&settings_, field, static_cast<std::int32_t>(value));
+      break;
+    default:
+      r.SetUInt32(&settings_, field, static_cast<std::uint32_t>(value));
+      break;
+  }
+}
+
+void SettingsFieldWrite::operator()(std::string_view name, const int& value) {
+  const FieldDescriptor* field = Find(name, "int");
+  if (field == nullptr) return;
+  const auto& r = *settings_.GetReflection();
+  if (field->cpp_type() == FieldDescriptor::CPPTYPE_INT32) {
+    r.SetInt32(&settings_, field, value);
+  } else if (value < 0) {
+    error_ = Path(name) + " = " + std::to_string(value) + ": must be ≥ 0";
+  } else {
+    r.SetUInt32(&settings_, field, static_cast<std::uint32_t>(value));
+  }
+}
+
+void SettingsFieldWrite::operator()(std::string_view name, const bool& value) {
+  if (const FieldDescriptor* field = Find(name, "bool")) {
+    settings_.GetReflection()->SetBool(&settings_, field, value);
+  }
+}
+
+void SettingsFieldWrite::operator()(std::string_view name, const std::string& value) {
+  if (const FieldDescriptor* field = Find(name, "string")) {
+    settings_.GetReflection()->SetString(&settings_, field, value);
   }
 }
 

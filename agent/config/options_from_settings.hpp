@@ -53,6 +53,44 @@ class SettingsFieldCopy {
   std::string error_;
 };
 
+// The other way: writes each member VisitFields names into that field of `settings` (an enum
+// of the options' own goes by the setting word its `parse` turns into the member's value).
+// Used where the agent holds a setting in a struct of its own (SearchConfig, LensProfile): the
+// state, and a command's merge, see it as the message. The first problem is kept.
+class SettingsFieldWrite {
+ public:
+  explicit SettingsFieldWrite(google::protobuf::Message* settings) : settings_(*settings) {}
+
+  void operator()(std::string_view name, const double& value);
+  void operator()(std::string_view name, const int& value);
+  void operator()(std::string_view name, const bool& value);
+  void operator()(std::string_view name, const std::string& value);
+  template <typename Enum, typename Parse>
+  void operator()(std::string_view name, const Enum& value, Parse parse) {
+    const google::protobuf::FieldDescriptor* field = Find(name, "enum");
+    if (field == nullptr) return;
+    const google::protobuf::EnumDescriptor& type = *field->enum_type();
+    for (int i = 0; i < type.value_count(); ++i) {
+      const auto parsed = parse(WordOf(*type.value(i)));
+      if (parsed && *parsed == value) {
+        settings_.GetReflection()->SetEnumValue(&settings_, field, type.value(i)->number());
+        return;
+      }
+    }
+    error_ = Path(name) + ": the options' value has no setting word";
+  }
+
+  const std::string& error() const { return error_; }
+
+ private:
+  const google::protobuf::FieldDescriptor* Find(std::string_view name, std::string_view cpp_type);
+  static std::string WordOf(const google::protobuf::EnumValueDescriptor& value);
+  std::string Path(std::string_view name) const;
+
+  google::protobuf::Message& settings_;
+  std::string error_;
+};
+
 // `options` with the fields it visits copied from `settings`. False with the reason (a bug in
 // the pairing, which the tests catch) and `options` partly copied.
 template <typename Options>
@@ -70,6 +108,27 @@ Options OptionsFromSettings(const google::protobuf::Message& settings, Options b
   std::string error;
   if (!CopySettings(settings, &base, &error)) throw std::logic_error(error);
   return base;
+}
+
+// `Settings` (a kapfix.v1 settings message) with every field `options` visits set from it;
+// throws std::logic_error for a pairing the message cannot hold (the tests catch it).
+template <typename Settings, typename Options>
+Settings SettingsFromOptions(Options options) {
+  Settings settings;
+  SettingsFieldWrite write(&settings);
+  options.VisitFields(write);
+  if (!write.error().empty()) throw std::logic_error(write.error());
+  return settings;
+}
+
+// As SettingsFromOptions, but a value the message cannot hold (a negative count) is a reason,
+// not a bug: false with "<message>.<field> = <value>: …" and `settings` partly written.
+template <typename Options>
+bool WriteSettings(Options options, google::protobuf::Message* settings, std::string* error) {
+  SettingsFieldWrite write(settings);
+  options.VisitFields(write);
+  if (!write.error().empty() && error) *error = write.error();
+  return write.error().empty();
 }
 
 }  // namespace kapfix::agent

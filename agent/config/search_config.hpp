@@ -1,6 +1,8 @@
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "common/image/color_channel.hpp"
 #include "common/sampling/sampling_pattern.hpp"
@@ -18,15 +20,39 @@ struct SearchConfig {
   int slices = 9;                    // horizontal bands for SSP
   SearchAxis axis = SearchAxis::kX;  // x (kite), y (boat) or both
   int range_px = 100;                // [px] R: shifts searched in [−R, R]
-  ColorChannel channel = ColorChannel::kGreen;       // green or rgb-sum
-  bool subpixel = true;                              // parabola refinement
-  SliceScoreKind slice_score = SliceScoreKind::kDc;  // what ranks the slices in SSP
-  double dc_hysteresis_px = 1.5;                     // [px] of the dc-hyst score
+  ColorChannel channel = ColorChannel::kGreen;  // green or rgb-sum
+  bool subpixel = true;                         // parabola refinement
+  SliceScoreKind score = SliceScoreKind::kDc;   // what ranks the slices in SSP
+  double hysteresis_px = 1.5;                   // [px] of the dc-hyst score
   // Free-swing processes (SSP, PSS, recording) stop after this many frames or seconds.
   int swing_frames = 300;     // [frames] 2…100000
   double swing_seconds = 20;  // [s] 0.1…3600
 
   bool IsValid(std::string* error) const;
+
+  // The operator-set members by the names of their settings (kapfix.v1.SearchSettings), listed
+  // once: the state, a command's merge and the range check see them as that message
+  // (SettingsFromOptions, CopySettings).
+  template <typename Visitor>
+  void VisitFields(Visitor&& visit) {
+    visit("strategy", strategy);
+    visit("sampling", sampling.kind, SamplingKindOfWord);
+    visit("random_fraction", sampling.fraction);
+    visit("patch_size_px", patch_px);
+    visit("slice_count", slices);
+    visit("axis", axis, ParseSearchAxis);
+    visit("search_range_px", range_px);
+    visit("subpixel", subpixel);
+    visit("channel", channel, ParseColorChannel);
+    visit("slice_score", score, SliceScoreOfWord);
+    visit("dc_hysteresis_px", hysteresis_px);
+  }
+
+ private:
+  // The setting words of kapfix.v1.Sampling and SliceScoreKind ("random", "dc_hysteresis")
+  // as common/'s enums.
+  static std::optional<SamplingKind> SamplingKindOfWord(std::string_view word);
+  static std::optional<SliceScoreKind> SliceScoreOfWord(std::string_view word);
 };
 
 }  // namespace kapfix::agent

@@ -44,8 +44,8 @@ SliceSelectionOptions MakeSliceSelectionOptions(const SearchConfig& search) {
   o.patch_size = search.patch_px;
   o.sampling = search.sampling;
   o.search = MakeSearchOptions(search);
-  o.hysteresis_px = search.dc_hysteresis_px;
-  o.score = search.slice_score;
+  o.hysteresis_px = search.hysteresis_px;
+  o.score = search.score;
   return o;
 }
 
@@ -69,10 +69,9 @@ bool SameLoop(const AgentConfig& a, const AgentConfig& b) {
   return s.strategy == t.strategy && ToString(s.sampling) == ToString(t.sampling) &&
          s.sampling.seed == t.sampling.seed && s.patch_px == t.patch_px && s.slices == t.slices &&
          s.axis == t.axis && s.range_px == t.range_px && s.channel == t.channel &&
-         s.subpixel == t.subpixel && s.slice_score == t.slice_score &&
-         s.dc_hysteresis_px == t.dc_hysteresis_px && a.gains.controller() == b.gains.controller() &&
-         l.name == m.name && l.DegPerPxPan() == m.DegPerPxPan() &&
-         l.DegPerPxTilt() == m.DegPerPxTilt();
+         s.subpixel == t.subpixel && s.score == t.score && s.hysteresis_px == t.hysteresis_px &&
+         a.gains.controller() == b.gains.controller() && l.name == m.name &&
+         l.DegPerPxPan() == m.DegPerPxPan() && l.DegPerPxTilt() == m.DegPerPxTilt();
 }
 
 }  // namespace kapfix::agent

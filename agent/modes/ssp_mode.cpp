@@ -25,8 +25,8 @@ FrameOutcome SspMode::Process(const CapturedFrame& frame, const ServoTargets& /*
     const SliceSelection selection = run_->Result(progress.deadline_reached);
     const SearchConfig& search = context_.settings().search;
     SliceReportContext report;
-    report.score = search.slice_score;
-    report.hysteresis_px = search.dc_hysteresis_px;
+    report.score = search.score;
+    report.hysteresis_px = search.hysteresis_px;
     report.patch_size_px = search.patch_px;
     report.strategy = search.strategy;
     context_.events().OnSliceReport(MakeSliceReport(selection, report, progress));

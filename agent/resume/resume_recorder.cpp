@@ -6,6 +6,8 @@
 #include <array>
 #include <utility>
 
+#include "agent/config/camera_config.hpp"
+
 namespace kapfix::agent {
 namespace {
 
@@ -46,7 +48,9 @@ void ResumeRecorder::AddSettingLocked(const kapfix::v1::Command& command) {
     if (!lens.has_name()) lens.set_name(active_lens_);
     active_lens_ = lens.name();
     lens_switched_ = true;
-    if (lens.has_focal_length_mm() || lens.has_pixel_pitch_um()) {
+    kapfix::v1::LensProfile optics = lens;
+    optics.clear_name();
+    if (optics.ByteSizeLong() != 0) {  // optics given (a present field serialises even at 0)
       kapfix::v1::Command& stored = lenses_[lens.name()];
       stored.mutable_set_lens()->MergeFrom(lens);
     }
@@ -57,12 +61,9 @@ void ResumeRecorder::AddSettingLocked(const kapfix::v1::Command& command) {
   }
   kapfix::v1::Command& stored = settings_[kind];
   if (kind == kapfix::v1::Command::kSetCamera) {
-    // A fixed exposure and automatic exposure exclude each other: the later one counts.
-    const kapfix::v1::CameraSettings& camera = command.set_camera();
-    if (camera.has_exposure_us()) stored.mutable_set_camera()->clear_auto_exposure();
-    if (camera.has_auto_exposure() && camera.auto_exposure()) {
-      stored.mutable_set_camera()->clear_exposure_us();
-    }
+    // A fixed exposure and automatic exposure exclude each other: the agent's own merge.
+    MergeCameraSettings(command.set_camera(), stored.mutable_set_camera());
+    return;
   }
   // Only what the command carries is stored: absent fields keep the earlier commands' values.
   kapfix::v1::Command update = command;

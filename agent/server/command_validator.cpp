@@ -7,6 +7,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -51,21 +52,6 @@ class Checker {
     if (!failed()) Reason(kapfix::v1::CheckSettings(settings, prefix));
   }
 
-  // A whole number whose upper bound depends on the frame: the schema's range, capped.
-  void WithinFrame(const google::protobuf::Message& settings, std::string_view field_name,
-                   std::uint64_t value, std::uint64_t frame_max, std::string_view prefix,
-                   std::string_view why) {
-    if (failed()) return;
-    const auto* field = kapfix::v1::SettingField(*settings.GetDescriptor(), field_name);
-    if (field == nullptr) return;
-    kapfix::v1::SettingOptions capped = *kapfix::v1::SettingOf(*field);
-    capped.set_max(std::min(capped.max(), static_cast<double>(frame_max)));
-    if (kapfix::v1::InRange(static_cast<double>(value), capped)) return;
-    Reason(kapfix::v1::OutOfRangeReason(std::string(prefix) + "." + std::string(field_name),
-                                        static_cast<double>(value), capped) +
-           " (" + std::string(why) + ")");
-  }
-
   // A range with no schema of its own (select_slice: 1 up to the slice count).
   void Whole(std::string_view field, std::uint64_t value, std::uint64_t lo, std::uint64_t hi,
              std::string_view why) {
@@ -88,27 +74,107 @@ class Checker {
   std::string reason_;
 };
 
-// The window may not outlast its cap (issue 13): across two fields, each of which may come
-// from the command or keep the agent's current value.
-void CheckPhoto(const kapfix::v1::PhotoSettings& photo, const kapfix::v1::AgentState& current,
-                Checker& check) {
-  check.Settings(photo, "set_photo");
-  if (check.failed() || (!photo.has_window_s() && !photo.has_window_cap_s())) return;
-  const float window = photo.has_window_s() ? photo.window_s() : current.photo().window_s();
-  // An agent that has not said its cap yet: the config's default.
-  constexpr float kDefaultCapS = 10;
-  const float cap = photo.has_window_cap_s()             ? photo.window_cap_s()
-                    : current.photo().has_window_cap_s() ? current.photo().window_cap_s()
-                                                         : kDefaultCapS;
-  if (window > cap) {
-    check.Fail(kapfix::v1::ERROR_CODE_OUT_OF_RANGE,
-               "set_photo.window_s = " + Num(window) + " s is longer than window_cap_s = " +
-                   Num(cap) + " s: shorten the window or raise the cap");
+std::uint32_t FrameSide(std::uint32_t side, const CommandLimits& limits) {
+  return side == 0 ? limits.fallback_frame_side_px : side;
+}
+
+// A numeric field's value, absent or not (absent reads 0).
+double NumberOf(const google::protobuf::Message& settings,
+                const google::protobuf::FieldDescriptor& field) {
+  const auto& r = *settings.GetReflection();
+  switch (field.cpp_type()) {
+    case google::protobuf::FieldDescriptor::CPPTYPE_FLOAT:
+      return r.GetFloat(settings, &field);
+    case google::protobuf::FieldDescriptor::CPPTYPE_DOUBLE:
+      return r.GetDouble(settings, &field);
+    case google::protobuf::FieldDescriptor::CPPTYPE_INT32:
+      return r.GetInt32(settings, &field);
+    case google::protobuf::FieldDescriptor::CPPTYPE_UINT32:
+      return r.GetUInt32(settings, &field);
+    default:
+      return 0;
   }
 }
 
-std::uint32_t FrameSide(std::uint32_t side, const CommandLimits& limits) {
-  return side == 0 ? limits.fallback_frame_side_px : side;
+// "5 s": the value as the field holds it (a float shows as the float it is) and its unit.
+std::string ValueText(const google::protobuf::FieldDescriptor& field, double value,
+                      const kapfix::v1::SettingOptions& options) {
+  const std::string number = field.cpp_type() == google::protobuf::FieldDescriptor::CPPTYPE_FLOAT
+                                 ? Num(static_cast<float>(value))
+                                 : Num(value);
+  return options.unit().empty() || options.unit() == "1" ? number : number + " " + options.unit();
+}
+
+// The agent's current settings of `settings`' type from its state, the schema's initial values
+// for those it has not reported yet.
+std::unique_ptr<google::protobuf::Message> HeldSettings(const google::protobuf::Message& settings,
+                                                        const kapfix::v1::AgentState& current) {
+  std::unique_ptr<google::protobuf::Message> held(settings.New());
+  std::string ignored;  // a bad initial value is the schema test's to catch
+  kapfix::v1::SetInitialSettings(held.get(), &ignored);
+  const google::protobuf::Descriptor& state = *kapfix::v1::AgentState::descriptor();
+  for (int i = 0; i < state.field_count(); ++i) {
+    if (state.field(i)->message_type() == settings.GetDescriptor()) {
+      kapfix::v1::MergeSettings(current.GetReflection()->GetMessage(current, state.field(i)),
+                                held.get());
+      break;
+    }
+  }
+  return held;
+}
+
+// Every present field of a settings command: the schema's range, capped by the agent's frame
+// where the field's option names a frame side, and not beyond the field its option's `at_most`
+// names (the command's value of it, or the agent's). Nothing here names a setting.
+void CheckSettingsCommand(const google::protobuf::Message& settings, std::string_view prefix,
+                          const kapfix::v1::AgentState& current, const CommandLimits& limits,
+                          Checker& check) {
+  check.Settings(settings, prefix);
+  const google::protobuf::Descriptor& type = *settings.GetDescriptor();
+  const auto& r = *settings.GetReflection();
+  const std::uint32_t width = FrameSide(current.frame_width_px(), limits);
+  const std::uint32_t height = FrameSide(current.frame_height_px(), limits);
+  std::unique_ptr<google::protobuf::Message> held;
+  for (int i = 0; i < type.field_count() && !check.failed(); ++i) {
+    const google::protobuf::FieldDescriptor& field = *type.field(i);
+    const kapfix::v1::SettingOptions* options = kapfix::v1::SettingOf(field);
+    if (options == nullptr || field.is_repeated()) continue;
+    const std::string path = std::string(prefix) + "." + field.name();
+    if (options->frame_side() != kapfix::v1::FRAME_SIDE_UNSPECIFIED &&
+        r.HasField(settings, &field)) {
+      const std::uint32_t side =
+          options->frame_side() == kapfix::v1::FRAME_SIDE_SHORTER  ? std::min(width, height)
+          : options->frame_side() == kapfix::v1::FRAME_SIDE_HEIGHT ? height
+                                                                   : std::max(width, height);
+      kapfix::v1::SettingOptions capped = *options;
+      capped.set_max(std::min(capped.max(), static_cast<double>(side)));
+      const double value = NumberOf(settings, field);
+      if (!kapfix::v1::InRange(value, capped)) {
+        check.Reason(kapfix::v1::OutOfRangeReason(path, value, capped) + " (" +
+                     options->frame_why() + ")");
+      }
+    }
+    const google::protobuf::FieldDescriptor* bound =
+        options->at_most().empty() ? nullptr : type.FindFieldByName(options->at_most());
+    if (bound == nullptr || (!r.HasField(settings, &field) && !r.HasField(settings, bound))) {
+      continue;
+    }
+    if (!held) held = HeldSettings(settings, current);
+    const auto value_of = [&](const google::protobuf::FieldDescriptor& f) {
+      return NumberOf(r.HasField(settings, &f) ? settings : *held, f);
+    };
+    const double value = value_of(field);
+    const double limit = value_of(*bound);
+    const kapfix::v1::SettingOptions* bound_options = kapfix::v1::SettingOf(*bound);
+    if (value > limit) {
+      check.Fail(
+          kapfix::v1::ERROR_CODE_OUT_OF_RANGE,
+          path + " = " + ValueText(field, value, *options) + " is more than " + bound->name() +
+              " = " +
+              ValueText(*bound, limit, bound_options != nullptr ? *bound_options : *options) +
+              ": " + options->at_most_why());
+    }
+  }
 }
 
 void CheckSearch(const kapfix::v1::SearchSettings& search, const kapfix::v1::AgentState& current,
@@ -127,21 +193,7 @@ void CheckSearch(const kapfix::v1::SearchSettings& search, const kapfix::v1::Age
                      ": unknown strategy, must be one of " + known);
     }
   }
-  check.Settings(search, "set_search");
-  const std::uint32_t width = FrameSide(current.frame_width_px(), limits);
-  const std::uint32_t height = FrameSide(current.frame_height_px(), limits);
-  if (search.has_patch_size_px()) {
-    check.WithinFrame(search, "patch_size_px", search.patch_size_px(), std::min(width, height),
-                      "set_search", "the patch must fit in the frame");
-  }
-  if (search.has_slice_count()) {
-    check.WithinFrame(search, "slice_count", search.slice_count(), height, "set_search",
-                      "a slice is at least one row of the frame");
-  }
-  if (search.has_search_range_px()) {
-    check.WithinFrame(search, "search_range_px", search.search_range_px(), std::max(width, height),
-                      "set_search", "shifts beyond the frame find nothing");
-  }
+  CheckSettingsCommand(search, "set_search", current, limits, check);
 }
 
 // The lens name becomes the file name its calibration is stored under: no path separators,
@@ -154,7 +206,8 @@ bool IsSafeName(std::string_view name) {
   });
 }
 
-void CheckLens(const kapfix::v1::LensProfile& lens, const CommandLimits& limits, Checker& check) {
+void CheckLens(const kapfix::v1::LensProfile& lens, const kapfix::v1::AgentState& current,
+               const CommandLimits& limits, Checker& check) {
   if (lens.has_name() && !lens.name().empty() && !check.failed()) {
     if (lens.name().size() > limits.max_lens_name_chars) {
       check.Fail(kapfix::v1::ERROR_CODE_OUT_OF_RANGE,
@@ -166,7 +219,7 @@ void CheckLens(const kapfix::v1::LensProfile& lens, const CommandLimits& limits,
                      "': only letters, digits, '.', '_' and '-', not starting with '.'");
     }
   }
-  check.Settings(lens, "set_lens");
+  CheckSettingsCommand(lens, "set_lens", current, limits, check);
 }
 
 void CheckMode(const kapfix::v1::SetMode& set_mode, Checker& check) {
@@ -210,7 +263,7 @@ Reply CommandValidator::Validate(const Command& command,
       CheckMode(command.set_mode(), check);
       break;
     case Command::kSetGains:
-      check.Settings(command.set_gains(), "set_gains");
+      CheckSettingsCommand(command.set_gains(), "set_gains", current, limits_, check);
       break;
     case Command::kSetSearch:
       CheckSearch(command.set_search(), current, limits_, check);
@@ -224,10 +277,10 @@ Reply CommandValidator::Validate(const Command& command,
       break;
     }
     case Command::kSetCamera:
-      check.Settings(command.set_camera(), "set_camera");
+      CheckSettingsCommand(command.set_camera(), "set_camera", current, limits_, check);
       break;
     case Command::kSetLens:
-      CheckLens(command.set_lens(), limits_, check);
+      CheckLens(command.set_lens(), current, limits_, check);
       break;
     case Command::kTakePhoto:
       if (command.take_photo().note().size() > limits_.max_photo_note_bytes) {
@@ -248,10 +301,10 @@ Reply CommandValidator::Validate(const Command& command,
       }
       break;
     case Command::kSetVideo:
-      check.Settings(command.set_video(), "set_video");
+      CheckSettingsCommand(command.set_video(), "set_video", current, limits_, check);
       break;
     case Command::kSetPhoto:
-      CheckPhoto(command.set_photo(), current, check);
+      CheckSettingsCommand(command.set_photo(), "set_photo", current, limits_, check);
       break;
     case Command::COMMAND_NOT_SET:
       check.Fail(kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND, UnknownCommandReason(command));

@@ -46,7 +46,7 @@ TEST(SettingsMessagesTest, SearchUpdateChangesOnlyTheGivenFields) {
   EXPECT_EQ(config.search.subpixel, before.subpixel);
   EXPECT_EQ(config.search.sampling.kind, before.sampling.kind);
   EXPECT_EQ(config.search.channel, before.channel);
-  EXPECT_EQ(config.search.slice_score, before.slice_score);
+  EXPECT_EQ(config.search.score, before.score);
 }
 
 TEST(SettingsMessagesTest, VideoUpdateChangesOnlyTheGivenFields) {
@@ -165,12 +165,36 @@ TEST(SettingsMessagesTest, UnknownLensWithoutOpticsIsRefused) {
 
 TEST(SettingsMessagesTest, AutoExposureClearsTheExposureTime) {
   AgentConfig config;
-  config.camera.exposure_us = 2000;
+  config.camera.settings.set_exposure_us(2000);
   kapfix::v1::Command command;
   command.mutable_set_camera()->set_auto_exposure(true);
   std::string error;
   ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
-  EXPECT_FALSE(config.camera.exposure_us.has_value());
+  EXPECT_FALSE(config.camera.settings.has_exposure_us());
+}
+
+TEST(SettingsMessagesTest, AFixedExposureTurnsAutomaticExposureOff) {
+  AgentConfig config;
+  ASSERT_TRUE(config.camera.settings.auto_exposure()) << "the agent starts on automatic exposure";
+  kapfix::v1::Command command;
+  command.mutable_set_camera()->set_exposure_us(2000);
+  std::string error;
+  ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
+  EXPECT_FLOAT_EQ(config.camera.settings.exposure_us(), 2000);
+  kapfix::v1::AgentState state;
+  FillSettings(config, &state);
+  EXPECT_FALSE(state.camera().auto_exposure());
+  EXPECT_FLOAT_EQ(state.camera().exposure_us(), 2000);
+  EXPECT_FLOAT_EQ(state.camera().gain_db(), 0) << "a gain left to the camera reads 0";
+}
+
+TEST(SettingsMessagesTest, AutomaticExposureSwitchedOffAloneKeepsIt) {
+  AgentConfig config;
+  kapfix::v1::Command command;
+  command.mutable_set_camera()->set_auto_exposure(false);
+  std::string error;
+  ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
+  EXPECT_TRUE(config.camera.settings.auto_exposure());
 }
 
 TEST(SettingsMessagesTest, PhotoIntervalIsApplied) {
@@ -190,8 +214,9 @@ TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
   config.search.patch_px = 50;
   config.search.slices = 7;
   config.search.axis = SearchAxis::kY;
-  config.camera.gain_db = 6;
-  config.camera.exposure_us = 1500;
+  config.camera.settings.set_gain_db(6);
+  config.camera.settings.set_exposure_us(1500);
+  config.camera.settings.clear_auto_exposure();
   config.camera.width = 800;
   config.camera.height = 600;
   config.photos.interval_s = 10;

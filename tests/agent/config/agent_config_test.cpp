@@ -293,7 +293,7 @@ TEST_F(AgentConfigFileTest, NullGainLeavesTheCameraGain) {
   ASSERT_TRUE(
       LoadAgentConfig(Write(R"({"settings": {"camera": {"gain_db": null}}})"), &config, &error))
       << error;
-  EXPECT_FALSE(config.camera.gain_db.has_value());
+  EXPECT_FALSE(config.camera.settings.has_gain_db());
 }
 
 TEST_F(AgentConfigFileTest, TopLevelArrayIsAnError) {

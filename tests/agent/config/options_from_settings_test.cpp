@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "agent/config/lens_profile.hpp"
+#include "agent/config/search_config.hpp"
 #include "common/control/controller.hpp"
 #include "common/shutter/best_phase_shutter.hpp"
 #include "kapfix/v1/settings.pb.h"
@@ -55,6 +57,80 @@ TEST(OptionsFromSettingsTest, EveryPhotoSettingIsAShutterOptionsField) {
   // `camera` picks which camera takes the photo (PhotoCameras), not how the shutter times it.
   ExpectEverySettingHasACounterpart<BestPhaseShutterOptions>(
       kapfix::v1::InitialSettings<kapfix::v1::PhotoSettings>(), {"camera"});
+}
+
+TEST(OptionsFromSettingsTest, EverySearchSettingIsASearchConfigField) {
+  kapfix::v1::SearchSettings search =
+      SettingsFromOptions<kapfix::v1::SearchSettings>(SearchConfig{});
+  ExpectEverySettingHasACounterpart<SearchConfig>(search, {});
+}
+
+TEST(OptionsFromSettingsTest, EveryLensSettingIsALensProfileField) {
+  ExpectEverySettingHasACounterpart<LensProfile>(kapfix::v1::LensProfile(), {});
+}
+
+TEST(OptionsFromSettingsTest, SearchSettingsGoToTheMessageAndBackUnchanged) {
+  SearchConfig search;
+  search.strategy = "h21";
+  search.sampling.kind = SamplingKind::kStatic;
+  search.sampling.fraction = 0.25;
+  search.patch_px = 64;
+  search.slices = 5;
+  search.axis = SearchAxis::kBoth;
+  search.range_px = 40;
+  search.subpixel = false;
+  search.channel = ColorChannel::kRgbSum;
+  search.score = SliceScoreKind::kDcHysteresis;
+  search.hysteresis_px = 2.5;
+  const auto message = SettingsFromOptions<kapfix::v1::SearchSettings>(search);
+  EXPECT_EQ(message.patch_size_px(), 64U);
+  EXPECT_EQ(message.slice_score(), kapfix::v1::SLICE_SCORE_KIND_DC_HYSTERESIS);
+  EXPECT_EQ(message.channel(), kapfix::v1::CHANNEL_RGB_SUM);
+  EXPECT_EQ(message.sampling(), kapfix::v1::SAMPLING_STATIC);
+  const SearchConfig back = OptionsFromSettings<SearchConfig>(message);
+  EXPECT_EQ(back.strategy, "h21");
+  EXPECT_EQ(back.sampling.kind, SamplingKind::kStatic);
+  EXPECT_DOUBLE_EQ(back.sampling.fraction, 0.25);
+  EXPECT_EQ(back.patch_px, 64);
+  EXPECT_EQ(back.slices, 5);
+  EXPECT_EQ(back.axis, SearchAxis::kBoth);
+  EXPECT_EQ(back.range_px, 40);
+  EXPECT_FALSE(back.subpixel);
+  EXPECT_EQ(back.channel, ColorChannel::kRgbSum);
+  EXPECT_EQ(back.score, SliceScoreKind::kDcHysteresis);
+  EXPECT_DOUBLE_EQ(back.hysteresis_px, 2.5);
+}
+
+TEST(OptionsFromSettingsTest, EverySliceScoreWordIsASliceScoreKind) {
+  const google::protobuf::EnumDescriptor& kinds = *kapfix::v1::SliceScoreKind_descriptor();
+  for (int i = 0; i < kinds.value_count(); ++i) {
+    if (kinds.value(i)->number() == 0) continue;  // unspecified: "unchanged", never held
+    kapfix::v1::SearchSettings search =
+        SettingsFromOptions<kapfix::v1::SearchSettings>(SearchConfig{});
+    search.set_slice_score(static_cast<kapfix::v1::SliceScoreKind>(kinds.value(i)->number()));
+    SearchConfig config;
+    std::string error;
+    EXPECT_TRUE(CopySettings(search, &config, &error)) << error;
+  }
+}
+
+TEST(OptionsFromSettingsTest, ANegativeCountIsRefusedWhenWrittenToTheMessage) {
+  SearchConfig search;
+  search.patch_px = -5;
+  kapfix::v1::SearchSettings message;
+  std::string error;
+  EXPECT_FALSE(WriteSettings(search, &message, &error));
+  EXPECT_EQ(error, "kapfix.v1.SearchSettings.patch_size_px = -5: must be ≥ 0");
+  EXPECT_THROW(SettingsFromOptions<kapfix::v1::SearchSettings>(search), std::logic_error);
+}
+
+TEST(OptionsFromSettingsTest, AnEnumValueWithoutASettingWordIsRefusedWhenWritten) {
+  SearchConfig search;
+  search.channel = ColorChannel::kRgb;  // common/'s per-channel SSD: no setting offers it
+  kapfix::v1::SearchSettings message;
+  std::string error;
+  EXPECT_FALSE(WriteSettings(search, &message, &error));
+  EXPECT_EQ(error, "kapfix.v1.SearchSettings.channel: the options' value has no setting word");
 }
 
 TEST(OptionsFromSettingsTest, EveryShutterWordIsAShutterMode) {

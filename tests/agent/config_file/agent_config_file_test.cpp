@@ -107,7 +107,7 @@ TEST(AgentConfigSettingsTest, SettingsAreAppliedAsTheirCommands) {
   EXPECT_DOUBLE_EQ(config.gains.dead_band_px(), 2);  // protobuf's lowerCamel name
   EXPECT_EQ(config.search.axis, SearchAxis::kBoth);
   EXPECT_EQ(config.search.patch_px, 64);
-  EXPECT_FALSE(config.camera.exposure_us.has_value());
+  EXPECT_FALSE(config.camera.settings.has_exposure_us());
   EXPECT_EQ(config.video.jpeg_quality(), 50U);
   EXPECT_DOUBLE_EQ(config.photos.interval_s, 2);
 }

@@ -265,7 +265,21 @@ TEST(CommandValidatorPhotoTest, RefusesAWindowLongerThanTheCapInTheCommand) {
   Command command;
   command.mutable_set_photo()->set_window_s(5.0F);
   command.mutable_set_photo()->set_window_cap_s(3.0F);
-  ExpectOutOfRange(command, "set_photo.window_s = 5", "longer than window_cap_s = 3");
+  ExpectOutOfRange(command, "set_photo.window_s = 5", "more than window_cap_s = 3");
+}
+
+// The bound comes from the schema (window_s's `at_most`), and so does the cap of an agent that
+// has not said its own yet (window_cap_s's initial value, 10 s).
+TEST(CommandValidatorPhotoTest, AnAgentWithoutACapIsHeldToTheSchemasInitialCap) {
+  Command command;
+  command.mutable_set_photo()->set_window_s(11.0F);
+  const auto reply = CommandValidator().Validate(command, State640x480());
+  EXPECT_FALSE(reply.ok());
+  EXPECT_EQ(reply.reason(),
+            "set_photo.window_s = 11 s is more than window_cap_s = 10 s: shorten the window or "
+            "raise the cap");
+  command.mutable_set_photo()->set_window_s(9.5F);
+  EXPECT_TRUE(CommandValidator().Validate(command, State640x480()).ok());
 }
 
 TEST(CommandValidatorPhotoTest, RefusesAWindowLongerThanTheAgentsCap) {
@@ -275,7 +289,7 @@ TEST(CommandValidatorPhotoTest, RefusesAWindowLongerThanTheAgentsCap) {
   state.mutable_photo()->set_window_cap_s(4.0F);
   const auto reply = CommandValidator().Validate(command, state);
   EXPECT_FALSE(reply.ok());
-  EXPECT_THAT(reply.reason(), HasSubstr("longer than window_cap_s = 4"));
+  EXPECT_THAT(reply.reason(), HasSubstr("more than window_cap_s = 4"));
   state.mutable_photo()->set_window_cap_s(6.0F);
   EXPECT_TRUE(CommandValidator().Validate(command, state).ok());
 }
