@@ -20,27 +20,6 @@ namespace {
 using kapfix::link::AgentLinkClient;
 using kapfix::link::AgentLinkClientOptions;
 
-// Telemetry of ~100 kB (padding in an unknown field keeps it valid): a few dozen fill the
-// TCP buffers, so small high-water marks make the publisher drop.
-kapfix::v1::Telemetry LargeTelemetry(std::uint64_t frame) {
-  kapfix::v1::Telemetry telemetry;
-  telemetry.set_frame_number(frame);
-  telemetry.GetReflection()
-      ->MutableUnknownFields(&telemetry)
-      ->AddLengthDelimited(1000, std::string(100'000, 'p'));
-  return telemetry;
-}
-
-template <typename Predicate>
-bool WaitFor(Predicate done) {
-  const auto deadline = std::chrono::steady_clock::now() + kWait;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
 TEST(AgentLinkClientLossesTest, BurstWhoseTailIsDroppedIsCountedLostAfterTheNextHeartbeat) {
   auto publisher_options = TestPublisherOptions();  // heartbeats every 50 ms
   publisher_options.send_high_water_mark = 2;

@@ -45,16 +45,6 @@ Command RequestState() {
   return command;
 }
 
-template <typename Predicate>
-bool WaitFor(Predicate done) {
-  const auto deadline = std::chrono::steady_clock::now() + kWait;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
 TEST(AgentLinkClientTest, RequestReturnsTheAgentsReply) {
   FakeAgent agent;
   AgentLinkClient client(OptionsFor(agent));

@@ -1,6 +1,7 @@
 #include "tests/link/link_test_support.hpp"
 
 #include <arpa/inet.h>
+#include <google/protobuf/unknown_field_set.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -151,6 +152,15 @@ UnusedPort::~UnusedPort() { Release(); }
 void UnusedPort::Release() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
+}
+
+kapfix::v1::Telemetry LargeTelemetry(std::uint64_t frame) {
+  kapfix::v1::Telemetry telemetry;
+  telemetry.set_frame_number(frame);
+  telemetry.GetReflection()
+      ->MutableUnknownFields(&telemetry)
+      ->AddLengthDelimited(1000, std::string(100'000, 'p'));
+  return telemetry;
 }
 
 }  // namespace kapfix::testing

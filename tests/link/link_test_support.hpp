@@ -5,9 +5,11 @@
 // station that sends exactly the frames a test wants, and a port on which nothing listens.
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 #include <zmq.hpp>
 
@@ -15,6 +17,7 @@
 #include "agent/server/stream_publisher.hpp"
 #include "kapfix/v1/command.pb.h"
 #include "kapfix/v1/envelope_codec.hpp"
+#include "kapfix/v1/telemetry.pb.h"
 #include "tests/link/fake_agent_control.hpp"
 
 namespace kapfix::testing {
@@ -22,6 +25,21 @@ namespace kapfix::testing {
 inline constexpr const char* kAgentId = "test-agent";
 // Every wait in these tests is bounded by this (a failing test fails, it does not hang).
 inline constexpr auto kWait = std::chrono::milliseconds(3000);
+
+// Polls `done` until it holds (true) or kWait has passed (false).
+template <typename Predicate>
+bool WaitFor(Predicate done) {
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+// Telemetry of ~100 kB (padding in an unknown field keeps it valid): a few dozen fill the
+// TCP buffers, so small high-water marks make the publisher drop.
+kapfix::v1::Telemetry LargeTelemetry(std::uint64_t frame);
 
 // A command line run as a script runs it (popen): its exit code (-1 when it did not exit
 // normally), its stdout, and its stderr, which the command line redirects to `err_file`.

@@ -33,17 +33,6 @@ kapfix::v1::VideoFrame VideoOfFrame(std::uint64_t frame) {
   return video;
 }
 
-// Waits until `done` holds or kWait passed.
-template <typename Predicate>
-bool WaitFor(Predicate done) {
-  const auto deadline = std::chrono::steady_clock::now() + kWait;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
 TEST(StreamPublisherTest, TelemetryPublishedNTimesArrivesNTimesInOrderWithoutGaps) {
   StreamPublisher publisher(TestPublisherOptions());
   RawSubscriber subscriber(publisher.Start(), {"telemetry"});
@@ -157,12 +146,7 @@ TEST(StreamPublisherTest, SubscriberThatFallsBehindLosesItsOwnMessagesAndSeesThe
   ASSERT_TRUE(subscriber.Ready());
   constexpr std::uint64_t kCount = 200;
   for (std::uint64_t i = 0; i < kCount; ++i) {
-    kapfix::v1::Telemetry telemetry = TelemetryOfFrame(i);
-    // Padding in an unknown field keeps it a valid Telemetry of ~100 kB.
-    telemetry.GetReflection()
-        ->MutableUnknownFields(&telemetry)
-        ->AddLengthDelimited(1000, std::string(100'000, 'p'));
-    ASSERT_TRUE(publisher.Publish(telemetry));
+    ASSERT_TRUE(publisher.Publish(LargeTelemetry(i)));
   }
   ASSERT_TRUE(WaitFor([&] { return publisher.counters().telemetry_sent == kCount; }));
   // The burst's losses are its tail (a full queue refuses the newest), so the gap shows in the

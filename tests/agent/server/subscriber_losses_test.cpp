@@ -23,25 +23,6 @@ using kapfix::agent::StationLosses;
 using kapfix::link::AgentLinkClient;
 using kapfix::link::AgentLinkClientOptions;
 
-kapfix::v1::Telemetry LargeTelemetry(std::uint64_t frame) {
-  kapfix::v1::Telemetry telemetry;
-  telemetry.set_frame_number(frame);
-  telemetry.GetReflection()
-      ->MutableUnknownFields(&telemetry)
-      ->AddLengthDelimited(1000, std::string(100'000, 'p'));
-  return telemetry;
-}
-
-template <typename Predicate>
-bool WaitFor(Predicate done) {
-  const auto deadline = std::chrono::steady_clock::now() + kWait;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
 AgentLinkClientOptions StationOptions(const FakeAgent& agent) {
   AgentLinkClientOptions options;
   options.command_endpoint = agent.command_endpoint;
