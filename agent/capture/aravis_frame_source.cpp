@@ -62,6 +62,89 @@ struct AravisFrameSource::Impl {
     stream = nullptr;
     camera = nullptr;
   }
+  // Finds the camera (options.camera_id, or the first one) and opens it; sets `id`.
+  bool Connect(std::string* error) {
+    arv_update_device_list();
+    if (arv_get_n_devices() == 0) {
+      return Fail(
+          "no GenICam camera found (USB3 Vision or GigE Vision; check the cable, udev "
+          "permissions and `arv-tool-0.8`)",
+          error);
+    }
+    GError* gerror = nullptr;
+    camera =
+        arv_camera_new(options.camera_id.empty() ? nullptr : options.camera_id.c_str(), &gerror);
+    if (camera == nullptr) {
+      const std::string reason = TakeError(&gerror);
+      std::string found;
+      for (unsigned i = 0; i < arv_get_n_devices() && i < 8; ++i) {
+        found += (i ? ", " : "") + std::string(arv_get_device_id(i));
+      }
+      return Fail("cannot open (" + reason + "); cameras found: " + found, error);
+    }
+    // arv_camera_new(nullptr) opens the first device of the list.
+    if (options.camera_id.empty()) {
+      const char* first = arv_get_device_id(0);
+      id = first ? first : "";
+    } else {
+      id = options.camera_id;
+    }
+    return true;
+  }
+  // Closes the camera and fails with `what` and the GError's message.
+  bool CloseAndFail(const std::string& what, GError** gerror, std::string* error) {
+    const std::string reason = TakeError(gerror);
+    Close();
+    return Fail(what + " (" + reason + ")", error);
+  }
+  // Each setting is applied in the order GenICam cameras expect: format and region first
+  // (they change the payload size), then the frame rate they allow.
+  bool ApplySettings(std::string* error) {
+    GError* gerror = nullptr;
+    if (!options.pixel_format.empty()) {
+      arv_camera_set_pixel_format_from_string(camera, options.pixel_format.c_str(), &gerror);
+      if (gerror)
+        return CloseAndFail("cannot set pixel format " + options.pixel_format, &gerror, error);
+    }
+    if (options.width > 0) {
+      arv_camera_set_region(camera, 0, 0, options.width, options.height, &gerror);
+      if (gerror) {
+        return CloseAndFail("cannot set region " + std::to_string(options.width) + "x" +
+                                std::to_string(options.height),
+                            &gerror, error);
+      }
+    }
+    if (options.fps > 0) {
+      arv_camera_set_frame_rate(camera, options.fps, &gerror);
+      if (gerror) {
+        return CloseAndFail("cannot set frame rate " + fmt::format("{:g}", options.fps), &gerror,
+                            error);
+      }
+    }
+    return true;
+  }
+  // Creates the stream with options.buffers buffers and starts continuous acquisition.
+  bool StartStream(std::string* error) {
+    GError* gerror = nullptr;
+    if (arv_camera_is_gv_device(camera)) {
+      arv_camera_gv_auto_packet_size(camera, &gerror);  // best effort: jumbo frames if the
+      TakeError(&gerror);                               // network allows them
+    }
+    stream = arv_camera_create_stream(camera, nullptr, nullptr, &gerror);
+    if (stream == nullptr) return CloseAndFail("cannot create a stream", &gerror, error);
+    const guint payload = arv_camera_get_payload(camera, &gerror);
+    if (gerror || payload == 0) {
+      return CloseAndFail("cannot read the payload size", &gerror, error);
+    }
+    for (int i = 0; i < options.buffers; ++i) {
+      arv_stream_push_buffer(stream, arv_buffer_new(payload, nullptr));
+    }
+    arv_camera_set_acquisition_mode(camera, ARV_ACQUISITION_MODE_CONTINUOUS, &gerror);
+    TakeError(&gerror);  // some cameras fix the mode; continuous is their default anyway
+    arv_camera_start_acquisition(camera, &gerror);
+    if (gerror) return CloseAndFail("cannot start acquisition", &gerror, error);
+    return true;
+  }
   // Converts one complete buffer; false + reason for a pixel format we do not read.
   bool Convert(ArvBuffer* buffer, cv::Mat* bgr, std::string* reason) const {
     const int width = arv_buffer_get_image_width(buffer);
@@ -117,91 +200,7 @@ bool AravisFrameSource::Open(std::string* error) {
   std::string reason;
   if (!d.options.IsValid(&reason)) return d.Fail(reason, error);
   if (d.options.enable_fake_camera) arv_enable_interface("Fake");
-
-  arv_update_device_list();
-  if (arv_get_n_devices() == 0) {
-    return d.Fail(
-        "no GenICam camera found (USB3 Vision or GigE Vision; check the cable, udev "
-        "permissions and `arv-tool-0.8`)",
-        error);
-  }
-  GError* gerror = nullptr;
-  d.camera =
-      arv_camera_new(d.options.camera_id.empty() ? nullptr : d.options.camera_id.c_str(), &gerror);
-  if (d.camera == nullptr) {
-    reason = TakeError(&gerror);
-    std::string found;
-    for (unsigned i = 0; i < arv_get_n_devices() && i < 8; ++i) {
-      found += (i ? ", " : "") + std::string(arv_get_device_id(i));
-    }
-    return d.Fail("cannot open (" + reason + "); cameras found: " + found, error);
-  }
-  // arv_camera_new(nullptr) opens the first device of the list.
-  if (d.options.camera_id.empty()) {
-    const char* first = arv_get_device_id(0);
-    d.id = first ? first : "";
-  } else {
-    d.id = d.options.camera_id;
-  }
-
-  // Each setting is applied in the order GenICam cameras expect: format and region first
-  // (they change the payload size), then the frame rate they allow.
-  if (!d.options.pixel_format.empty()) {
-    arv_camera_set_pixel_format_from_string(d.camera, d.options.pixel_format.c_str(), &gerror);
-    if (gerror) {
-      reason = TakeError(&gerror);
-      d.Close();
-      return d.Fail("cannot set pixel format " + d.options.pixel_format + " (" + reason + ")",
-                    error);
-    }
-  }
-  if (d.options.width > 0) {
-    arv_camera_set_region(d.camera, 0, 0, d.options.width, d.options.height, &gerror);
-    if (gerror) {
-      reason = TakeError(&gerror);
-      d.Close();
-      return d.Fail("cannot set region " + std::to_string(d.options.width) + "x" +
-                        std::to_string(d.options.height) + " (" + reason + ")",
-                    error);
-    }
-  }
-  if (d.options.fps > 0) {
-    arv_camera_set_frame_rate(d.camera, d.options.fps, &gerror);
-    if (gerror) {
-      reason = TakeError(&gerror);
-      d.Close();
-      return d.Fail(
-          "cannot set frame rate " + fmt::format("{:g}", d.options.fps) + " (" + reason + ")",
-          error);
-    }
-  }
-  if (arv_camera_is_gv_device(d.camera)) {
-    arv_camera_gv_auto_packet_size(d.camera, &gerror);  // best effort: jumbo frames if the
-    TakeError(&gerror);                                 // network allows them
-  }
-  d.stream = arv_camera_create_stream(d.camera, nullptr, nullptr, &gerror);
-  if (d.stream == nullptr) {
-    reason = TakeError(&gerror);
-    d.Close();
-    return d.Fail("cannot create a stream (" + reason + ")", error);
-  }
-  const guint payload = arv_camera_get_payload(d.camera, &gerror);
-  if (gerror || payload == 0) {
-    reason = TakeError(&gerror);
-    d.Close();
-    return d.Fail("cannot read the payload size (" + reason + ")", error);
-  }
-  for (int i = 0; i < d.options.buffers; ++i) {
-    arv_stream_push_buffer(d.stream, arv_buffer_new(payload, nullptr));
-  }
-  arv_camera_set_acquisition_mode(d.camera, ARV_ACQUISITION_MODE_CONTINUOUS, &gerror);
-  TakeError(&gerror);  // some cameras fix the mode; continuous is their default anyway
-  arv_camera_start_acquisition(d.camera, &gerror);
-  if (gerror) {
-    reason = TakeError(&gerror);
-    d.Close();
-    return d.Fail("cannot start acquisition (" + reason + ")", error);
-  }
+  if (!d.Connect(error) || !d.ApplySettings(error) || !d.StartStream(error)) return false;
   spdlog::info("camera: {} open", Describe());
   return true;
 }

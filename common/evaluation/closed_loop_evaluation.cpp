@@ -123,151 +123,220 @@ double ServoReach(double target, double previous, double low, double high, doubl
 
 }  // namespace
 
-ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopOptions& options,
-                                     const std::function<void(int, int)>& progress) {
-  std::string error;
-  if (!options.IsValid(&error)) throw std::invalid_argument("EvaluateClosedLoop: " + error);
-  const SimulatedPlatformOptions platform_options = WorldPlatform(options);
-  SimulatedPlatform platform(scene_bgr, platform_options);
-  const double deg_per_px =
-      options.calibration_scale * options.world.calibration_error / platform_options.px_per_deg;
-  const LensCalibration calibration{deg_per_px, deg_per_px};
-  std::unique_ptr<Controller> controller = MakeController(
-      options.controller, options.gains, calibration, EffectivePredictive(options), &error);
-  const auto* predictive = dynamic_cast<const PredictiveController*>(controller.get());
-  const std::shared_ptr<const SearchStrategy> strategy =
-      MakeSearchStrategy(options.strategy, &error);
-  FixationOptions fixation = options.fixation;
-  if (options.start == ClosedLoopOptions::Start::kAfterSsp) {
-    fixation.slice = FreeSwingSlice(platform, fixation, *strategy, options.ssp_frames);
-    platform.Step();
+namespace {
+
+// One closed-loop flight: the simulated platform, what the controller believes the servos
+// show, the fixation loop, and the figures' accumulators. Built once per EvaluateClosedLoop;
+// the steps run in the order of the original single function, so the random draws keep their
+// order.
+class ClosedLoopRun {
+ public:
+  // `options` must be IsValid and outlive the run.
+  ClosedLoopRun(const cv::Mat& scene_bgr, const ClosedLoopOptions& options)
+      : options_(options),
+        platform_options_(WorldPlatform(options)),
+        platform_(scene_bgr, platform_options_),
+        calibration_(Calibration(options, platform_options_)),
+        initial_{platform_options_.pan.initial_deg, platform_options_.tilt.initial_deg},
+        last_sent_(initial_) {
+    SetUp();
   }
-  // What the controller believes the servos show: built from the commands sent, never from
-  // the servos' true output angles (those stay the simulation's), and resolved from each
-  // frame's measurement when the latency jitters (ServoBelief).
-  const ServoTargets initial{platform_options.pan.initial_deg, platform_options.tilt.initial_deg};
-  const auto belief = std::make_shared<ServoBelief>(ServoBeliefOptions{
-      1 + platform_options.pan.latency_frames,
-      1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames),
-      initial});
-  FixationLoop loop(
-      fixation, strategy,
-      std::make_unique<ServoBeliefController>(std::move(controller), belief, calibration),
-      calibration);
+
+  // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
+  // controller's history starts there, as the agent's does when it fixates mid-stream.
+  void FixateOnReference() {
+    held_ = platform_.ViewOffset();
+    const SimulatedFrame reference = platform_.CaptureFrame();
+    loop_->SetReference(reference.image);
+    const FixationLoop::Step step =
+        loop_->Process(reference.image, belief_->Expose(reference.frame), options_.frame_period_s);
+    Command(reference.frame, step.targets);
+  }
+
+  // Steps the platform one frame, captures it, and lets the loop measure and command.
+  void StepFrame() {
+    platform_.Step();
+    const SimulatedFrame frame = platform_.CaptureFrame();
+    const cv::Point2d offset = platform_.ViewOffset() - held_;  // of the frame just captured
+    const double view_error = RecordViewError(frame, offset);
+    if (platform_.FrameDropped(frame.frame)) {
+      RecordDroppedFrame(view_error);
+      return;
+    }
+    const FixationLoop::Step step = loop_->Process(frame.image, belief_->Expose(frame.frame),
+                                                   options_.frame_period_s * (1 + missed_));
+    missed_ = 0;
+    figures_.believed.push_back(belief_->Believed());
+    Command(frame.frame, step.targets);
+    figures_.commanded.push_back(last_sent_);
+    lock_lost_ = step.lock_lost;
+    off_target_ = step.off_target;
+    honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
+    RecordMeasurement(step, offset);
+  }
+
+  // The flight's figures from the accumulators; call once, after the last StepFrame.
+  ClosedLoopFigures Figures() {
+    const double n = options_.frames;
+    figures_.rms_error_x_px = std::sqrt(sum_x_ / n);
+    figures_.rms_error_y_px = std::sqrt(sum_y_ / n);
+    figures_.rms_error_px = std::sqrt((sum_x_ + sum_y_) / n);
+    figures_.open_loop_rms_px = std::sqrt(sum_open_ / n);
+    figures_.lock_lost_pct = 100.0 * lost_ / n;
+    figures_.p95_error_px = Percentile(errors_, 95.0);
+    figures_.measurement_rms_px = measured_ > 0 ? std::sqrt(sum_miss_ / measured_) : kNan;
+    figures_.confidence_loss = measured_ > 0 ? 1.0 - sum_confidence_ / measured_ : kNan;
+    honesty_.Finish(n, &figures_);
+    figures_.dropped_pct = 100.0 * dropped_ / n;
+    figures_.predicting_pct = 100.0 * predicting_ / n;
+    FillCalibrationEstimate(predictive_, platform_options_.px_per_deg, &figures_);
+    figures_.fps = total_us_ > 0 ? n / (total_us_ * 1e-6) : 0.0;
+    figures_.loop_latency_p50_ms = loop_us_.empty() ? 0.0 : Percentile(loop_us_, 50.0) / 1000.0;
+    figures_.loop_latency_p99_ms = loop_us_.empty() ? 0.0 : Percentile(loop_us_, 99.0) / 1000.0;
+    return figures_;
+  }
+
+ private:
+  static constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+  static LensCalibration Calibration(const ClosedLoopOptions& options,
+                                     const SimulatedPlatformOptions& platform_options) {
+    const double deg_per_px =
+        options.calibration_scale * options.world.calibration_error / platform_options.px_per_deg;
+    return LensCalibration{deg_per_px, deg_per_px};
+  }
+
+  // Controller, search strategy, slice (after SSP's free swing if asked), belief and loop,
+  // in this order.
+  void SetUp() {
+    std::string error;
+    std::unique_ptr<Controller> controller = MakeController(
+        options_.controller, options_.gains, calibration_, EffectivePredictive(options_), &error);
+    predictive_ = dynamic_cast<const PredictiveController*>(controller.get());
+    const std::shared_ptr<const SearchStrategy> strategy =
+        MakeSearchStrategy(options_.strategy, &error);
+    FixationOptions fixation = options_.fixation;
+    if (options_.start == ClosedLoopOptions::Start::kAfterSsp) {
+      fixation.slice = FreeSwingSlice(platform_, fixation, *strategy, options_.ssp_frames);
+      platform_.Step();
+    }
+    // What the controller believes the servos show: built from the commands sent, never from
+    // the servos' true output angles (those stay the simulation's), and resolved from each
+    // frame's measurement when the latency jitters (ServoBelief).
+    const SimulatedServoOptions& pan = platform_options_.pan;
+    belief_ = std::make_shared<ServoBelief>(
+        ServoBeliefOptions{1 + pan.latency_frames,
+                           1 + std::max(pan.latency_frames, pan.latency_max_frames), initial_});
+    loop_ = std::make_unique<FixationLoop>(
+        fixation, strategy,
+        std::make_unique<ServoBeliefController>(std::move(controller), belief_, calibration_),
+        calibration_);
+    figures_.frames = options_.frames;
+    figures_.slice = fixation.slice;
+    loop_us_.reserve(static_cast<std::size_t>(options_.frames));
+    errors_.reserve(static_cast<std::size_t>(options_.frames));
+  }
+
   // The driver also keeps each command within the servo's rated speed of the previous one,
   // so that the command is what the servo can reach: otherwise the controller's belief
   // (the command) and the servo's true angle part whenever the rate limit bites, and a loop
   // acting on that belief feeds its own error back.
-  ServoTargets last_sent = initial;
-  int last_sent_frame = -1;
-  const auto command = [&](int frame, const ServoTargets& targets) {
-    const int frames_since = last_sent_frame < 0 ? 1 : frame - last_sent_frame;
+  void Command(int frame, const ServoTargets& targets) {
+    const int frames_since = last_sent_frame_ < 0 ? 1 : frame - last_sent_frame_;
+    const SimulatedServoOptions& pan = platform_options_.pan;
+    const SimulatedServoOptions& tilt = platform_options_.tilt;
     const ServoTargets clamped{
-        ServoReach(targets.pan_deg, last_sent.pan_deg, platform_options.pan.min_deg,
-                   platform_options.pan.max_deg,
-                   platform_options.pan.rate_limit_deg_per_frame * frames_since),
-        ServoReach(targets.tilt_deg, last_sent.tilt_deg, platform_options.tilt.min_deg,
-                   platform_options.tilt.max_deg,
-                   platform_options.tilt.rate_limit_deg_per_frame * frames_since)};
-    platform.CommandPan(clamped.pan_deg);
-    platform.CommandTilt(clamped.tilt_deg);
-    belief->Sent(frame, clamped);
-    last_sent = clamped;
-    last_sent_frame = frame;
-  };
-  // Frame 0 is the reference, and also the loop's first measurement (displacement 0): the
-  // controller's history starts there, as the agent's does when it fixates mid-stream.
-  const cv::Point2d held = platform.ViewOffset();  // [px] the reference's view
-  {
-    const SimulatedFrame reference = platform.CaptureFrame();
-    loop.SetReference(reference.image);
-    const FixationLoop::Step step =
-        loop.Process(reference.image, belief->Expose(reference.frame), options.frame_period_s);
-    command(reference.frame, step.targets);
+        ServoReach(targets.pan_deg, last_sent_.pan_deg, pan.min_deg, pan.max_deg,
+                   pan.rate_limit_deg_per_frame * frames_since),
+        ServoReach(targets.tilt_deg, last_sent_.tilt_deg, tilt.min_deg, tilt.max_deg,
+                   tilt.rate_limit_deg_per_frame * frames_since)};
+    platform_.CommandPan(clamped.pan_deg);
+    platform_.CommandTilt(clamped.tilt_deg);
+    belief_->Sent(frame, clamped);
+    last_sent_ = clamped;
+    last_sent_frame_ = frame;
   }
 
-  ClosedLoopFigures figures;
-  figures.frames = options.frames;
-  figures.slice = fixation.slice;
-  std::vector<double> loop_us;
-  loop_us.reserve(static_cast<std::size_t>(options.frames));
-  std::vector<double> errors;
-  errors.reserve(static_cast<std::size_t>(options.frames));
-  double sum_x = 0, sum_y = 0, sum_open = 0, total_us = 0, sum_miss = 0, sum_confidence = 0;
-  int measured = 0;
-  int lost = 0, predicting = 0, dropped = 0, missed = 0;
-  bool lock_lost = false, off_target = false;
-  LockHonesty honesty;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (int i = 0; i < options.frames; ++i) {
-    platform.Step();
-    const SimulatedFrame frame = platform.CaptureFrame();
-    const cv::Point2d offset = platform.ViewOffset() - held;  // of the frame just captured
-    const cv::Point2d open = platform.OpenLoopOffset();
-    figures.view_offsets.push_back(offset);
-    figures.angles.push_back({frame.pan_deg, frame.tilt_deg});
-    sum_x += offset.x * offset.x;
-    sum_y += offset.y * offset.y;
-    sum_open += open.dot(open);
+  // The truth of the frame just captured (view offset [px], servo angles); returns its view
+  // error [px].
+  double RecordViewError(const SimulatedFrame& frame, const cv::Point2d& offset) {
+    const cv::Point2d open = platform_.OpenLoopOffset();
+    figures_.view_offsets.push_back(offset);
+    figures_.angles.push_back({frame.pan_deg, frame.tilt_deg});
+    sum_x_ += offset.x * offset.x;
+    sum_y_ += offset.y * offset.y;
+    sum_open_ += open.dot(open);
     const double view_error = std::hypot(offset.x, offset.y);
-    errors.push_back(view_error);
-    if (platform.FrameDropped(frame.frame)) {
-      // Lost by the camera: nothing is measured or commanded; the lock state stands.
-      ++dropped;
-      ++missed;
-      figures.measured_x.push_back(nan);
-      figures.measured_y.push_back(nan);
-      figures.believed.push_back({nan, nan});
-      figures.commanded.push_back({nan, nan});
-      lost += lock_lost ? 1 : 0;
-      honesty.Add(view_error, lock_lost, off_target, &figures);
-      if (progress) progress(i + 1, options.frames);
-      continue;
-    }
-    const FixationLoop::Step step = loop.Process(frame.image, belief->Expose(frame.frame),
-                                                 options.frame_period_s * (1 + missed));
-    missed = 0;
-    figures.believed.push_back(belief->Believed());
-    command(frame.frame, step.targets);
-    figures.commanded.push_back(last_sent);
-    lock_lost = step.lock_lost;
-    off_target = step.off_target;
-    honesty.Add(view_error, lock_lost, off_target, &figures);
+    errors_.push_back(view_error);
+    return view_error;
+  }
 
+  // Lost by the camera: nothing is measured or commanded; the lock state stands.
+  void RecordDroppedFrame(double view_error) {
+    ++dropped_;
+    ++missed_;
+    figures_.measured_x.push_back(kNan);
+    figures_.measured_y.push_back(kNan);
+    figures_.believed.push_back({kNan, kNan});
+    figures_.commanded.push_back({kNan, kNan});
+    lost_ += lock_lost_ ? 1 : 0;
+    honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
+  }
+
+  // What the matcher measured against the truth `offset` [px], the lock, the forecast share
+  // and the loop's time.
+  void RecordMeasurement(const FixationLoop::Step& step, const cv::Point2d& offset) {
     if (step.match.found) {
       // A perfect match measures −ViewOffset (the content moves against the view).
       const cv::Point2d miss = step.match.displacement + offset;
-      sum_miss += miss.dot(miss);
-      sum_confidence += step.match.confidence;
-      ++measured;
+      sum_miss_ += miss.dot(miss);
+      sum_confidence_ += step.match.confidence;
+      ++measured_;
     }
-    figures.measured_x.push_back(step.match.found ? step.match.displacement.x : nan);
-    figures.measured_y.push_back(step.match.found ? step.match.displacement.y : nan);
-    lost += step.lock_lost ? 1 : 0;
-    if (predictive && (predictive->predicting_pan() || predictive->predicting_tilt())) {
-      ++predicting;
+    figures_.measured_x.push_back(step.match.found ? step.match.displacement.x : kNan);
+    figures_.measured_y.push_back(step.match.found ? step.match.displacement.y : kNan);
+    lost_ += step.lock_lost ? 1 : 0;
+    if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {
+      ++predicting_;
     }
-    loop_us.push_back(step.loop_us);
-    total_us += step.loop_us;
+    loop_us_.push_back(step.loop_us);
+    total_us_ += step.loop_us;
+  }
+
+  const ClosedLoopOptions& options_;
+  const SimulatedPlatformOptions platform_options_;
+  SimulatedPlatform platform_;
+  const LensCalibration calibration_;
+  const ServoTargets initial_;
+  const PredictiveController* predictive_ = nullptr;  // owned by loop_; null unless predictive
+  std::shared_ptr<ServoBelief> belief_;
+  std::unique_ptr<FixationLoop> loop_;
+  ServoTargets last_sent_;
+  int last_sent_frame_ = -1;
+  cv::Point2d held_;  // [px] the reference's view
+
+  ClosedLoopFigures figures_;
+  std::vector<double> loop_us_;  // [µs] per measured frame
+  std::vector<double> errors_;   // [px] view error per frame
+  double sum_x_ = 0, sum_y_ = 0, sum_open_ = 0, total_us_ = 0, sum_miss_ = 0, sum_confidence_ = 0;
+  int measured_ = 0, lost_ = 0, predicting_ = 0, dropped_ = 0, missed_ = 0;
+  bool lock_lost_ = false, off_target_ = false;
+  LockHonesty honesty_;
+};
+
+}  // namespace
+
+ClosedLoopFigures EvaluateClosedLoop(const cv::Mat& scene_bgr, const ClosedLoopOptions& options,
+                                     const std::function<void(int, int)>& progress) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument("EvaluateClosedLoop: " + error);
+  ClosedLoopRun run(scene_bgr, options);
+  run.FixateOnReference();
+  for (int i = 0; i < options.frames; ++i) {
+    run.StepFrame();
     if (progress) progress(i + 1, options.frames);
   }
-  const double n = options.frames;
-  figures.rms_error_x_px = std::sqrt(sum_x / n);
-  figures.rms_error_y_px = std::sqrt(sum_y / n);
-  figures.rms_error_px = std::sqrt((sum_x + sum_y) / n);
-  figures.open_loop_rms_px = std::sqrt(sum_open / n);
-  figures.lock_lost_pct = 100.0 * lost / n;
-  figures.p95_error_px = Percentile(errors, 95.0);
-  figures.measurement_rms_px = measured > 0 ? std::sqrt(sum_miss / measured) : nan;
-  figures.confidence_loss = measured > 0 ? 1.0 - sum_confidence / measured : nan;
-  honesty.Finish(n, &figures);
-  figures.dropped_pct = 100.0 * dropped / n;
-  figures.predicting_pct = 100.0 * predicting / n;
-  FillCalibrationEstimate(predictive, platform_options.px_per_deg, &figures);
-  figures.fps = total_us > 0 ? n / (total_us * 1e-6) : 0.0;
-  figures.loop_latency_p50_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 50.0) / 1000.0;
-  figures.loop_latency_p99_ms = loop_us.empty() ? 0.0 : Percentile(loop_us, 99.0) / 1000.0;
-  return figures;
+  return run.Figures();
 }
 
 }  // namespace kapfix

@@ -102,41 +102,28 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
   controller_->Reset();
 }
 
-FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTargets& current,
-                                         double dt_s) {
-  const auto start = std::chrono::steady_clock::now();
-  Step step;
-  step.targets = current;
-  const auto finish = [&start, &step]() {
-    step.loop_us =
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    return step;
-  };
-  if (!reference_) {
-    step.lock_lost = true;
-    return finish();
-  }
-
-  const cv::Mat plane = Plane(frame_bgr);
+SearchOptions FixationLoop::SearchWindow(cv::Size frame, bool stored, Step* step) const {
   SearchOptions search = options_.search;
   if (options_.track_origin) search.origin = origin_;
-  const bool stored = options_.reference == FixationOptions::Reference::kStored;
   if (reacquiring_ && stored) {
     // Back to where the reference was, over a wider window that stays inside the frame.
     search.origin = options_.search.origin;
-    const int fit_x = std::min(patch_.x, plane.cols - patch_.br().x) - kReacquireMarginPx;
-    const int fit_y = std::min(patch_.y, plane.rows - patch_.br().y) - kReacquireMarginPx;
+    const int fit_x = std::min(patch_.x, frame.width - patch_.br().x) - kReacquireMarginPx;
+    const int fit_y = std::min(patch_.y, frame.height - patch_.br().y) - kReacquireMarginPx;
     const int fit = search.axis == SearchAxis::kX   ? fit_x
                     : search.axis == SearchAxis::kY ? fit_y
                                                     : std::min(fit_x, fit_y);
     const int wide = static_cast<int>(search.range * options_.reacquire_range_factor);
     search.range = std::max(search.range, std::min(wide, fit));
-    step.reacquiring = true;
+    step->reacquiring = true;
   }
-  step.match = strategy_->Search(*reference_, plane, search);
+  return search;
+}
 
-  const bool confident = step.match.found && step.match.confidence >= options_.lock_lost_confidence;
-  const bool clear = step.match.found && step.match.confidence >= options_.lock_regain_confidence;
+void FixationLoop::UpdateLock(bool stored, Step* step) {
+  const bool confident =
+      step->match.found && step->match.confidence >= options_.lock_lost_confidence;
+  const bool clear = step->match.found && step->match.confidence >= options_.lock_regain_confidence;
   clear_frames_ = clear ? clear_frames_ + 1 : 0;
   // A run of untrusted frames ends only with lock_regain_frames clear frames in a row, not
   // with one good frame: on a chessboard a slice may alternate right and ambiguous matches
@@ -158,41 +145,68 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
     confirmed_ = true;
   }
   if (returning_ && confident) {
-    cv::Point2d measured = step.match.displacement;
-    if (options_.search.axis == SearchAxis::kX) measured.y = 0;
-    if (options_.search.axis == SearchAxis::kY) measured.x = 0;
+    const cv::Point2d measured = OnSearchedAxes(step->match.displacement);
     if (std::hypot(measured.x, measured.y) <= options_.lock_regain_px) returning_ = false;
   }
-  step.lock_lost = reacquiring_ || returning_;
-  const bool trusted = confident && !reacquiring_;
-  step.trusted = trusted;
-  if (confident) origin_ = step.match.shift;
+  step->lock_lost = reacquiring_ || returning_;
+  step->trusted = confident && !reacquiring_;
+  if (confident) origin_ = step->match.shift;
+}
 
-  cv::Point2d displacement = trusted ? step.match.displacement : cv::Point2d(0, 0);
-  // Only the searched axes are measured: the other one's value is the search's by-product
-  // (its origin, or pyr's coarse cross-axis tolerance), not a measurement to steer by.
+cv::Point2d FixationLoop::OnSearchedAxes(cv::Point2d displacement) const {
   if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
   if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
+  return displacement;
+}
+
+cv::Point2d FixationLoop::FollowStep(const cv::Mat& plane, const cv::Point2d& frame_step) {
+  // The view's offset from the first reference is the sum of its frame-to-frame steps;
+  // the leak lets the reference follow the boat's slow course instead.
+  const double keep = std::exp(-1.0 / options_.follow_decay_frames);
+  follow_sum_ = follow_sum_ * keep + frame_step;
+  reference_.emplace(plane, samples_);
+  origin_ = options_.search.origin;  // the next step is measured against this frame
+  return follow_sum_;
+}
+
+FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTargets& current,
+                                         double dt_s) {
+  const auto start = std::chrono::steady_clock::now();
+  Step step;
+  step.targets = current;
+  const auto finish = [&start, &step]() {
+    step.loop_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    return step;
+  };
+  if (!reference_) {
+    step.lock_lost = true;
+    return finish();
+  }
+
+  const cv::Mat plane = Plane(frame_bgr);
+  const bool stored = options_.reference == FixationOptions::Reference::kStored;
+  const SearchOptions search = SearchWindow(plane.size(), stored, &step);
+  step.match = strategy_->Search(*reference_, plane, search);
+  UpdateLock(stored, &step);
+
+  // Only the searched axes are measured: the other one's value is the search's by-product
+  // (its origin, or pyr's coarse cross-axis tolerance), not a measurement to steer by.
+  cv::Point2d displacement =
+      OnSearchedAxes(step.trusted ? step.match.displacement : cv::Point2d(0, 0));
 
   // Follow has no stored view to be on or off: its claim is the trusted lock alone.
   const bool held_view = options_.reference == FixationOptions::Reference::kPrevious ||
                          std::hypot(displacement.x, displacement.y) <= options_.off_target_px;
-  step.off_target = step.lock_lost || !trusted || !held_view;
-
+  step.off_target = step.lock_lost || !step.trusted || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
-    // The view's offset from the first reference is the sum of its frame-to-frame steps;
-    // the leak lets the reference follow the boat's slow course instead.
-    const double keep = std::exp(-1.0 / options_.follow_decay_frames);
-    follow_sum_ = follow_sum_ * keep + displacement;
-    displacement = follow_sum_;
-    reference_.emplace(plane, samples_);
-    origin_ = options_.search.origin;  // the next step is measured against this frame
+    displacement = FollowStep(plane, displacement);
   }
 
   ControlInput input;
   input.displacement_px = displacement;
   input.confidence = step.match.confidence;
-  input.found = trusted;
+  input.found = step.trusted;
   input.dt_s = dt_s;
   step.targets = controller_->Update(input, current);
   step.estimate = controller_->estimate();

@@ -125,6 +125,17 @@ class FixationLoop {
 
  private:
   cv::Mat Plane(const cv::Mat& frame_bgr) const;
+  // The search for this frame: around the tracked origin, or widened around the stored
+  // reference while re-acquiring (then marks `step` reacquiring).
+  SearchOptions SearchWindow(cv::Size frame, bool stored, Step* step) const;
+  // Counts clear and untrusted frames from `step`'s match, loses or regains the lock, and
+  // sets `step`'s lock_lost and trusted.
+  void UpdateLock(bool stored, Step* step);
+  // [px] `displacement` with the axis that is not searched set to 0.
+  cv::Point2d OnSearchedAxes(cv::Point2d displacement) const;
+  // Follow (previous-frame reference): adds `frame_step` [px] to the leaky sum, makes
+  // `plane` the next reference, and returns the sum [px].
+  cv::Point2d FollowStep(const cv::Mat& plane, const cv::Point2d& frame_step);
 
   FixationOptions options_;
   std::shared_ptr<const SearchStrategy> strategy_;
