@@ -25,8 +25,7 @@ std::uint64_t StationLosses::total() const {
   return sum;
 }
 
-SubscriberLossBook::SubscriberLossBook(SubscriberLossBookOptions options)
-    : options_(options) {
+SubscriberLossBook::SubscriberLossBook(SubscriberLossBookOptions options) : options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
