@@ -15,14 +15,6 @@ using kapfix::v1::Reply;
 
 using kapfix::link::kCommandTopic;
 
-// Whether CommandValidator reads the agent's state for `command` (the frame size for
-// set_search, the slice count for select_slice, the photo window for set_photo). The others,
-// request_state above all, are validated without building a state snapshot, which takes the
-// lock the control thread reports its mode and results under. Keep in step with Validate.
-bool ValidationNeedsState(const Command& command) {
-  return command.has_set_search() || command.has_select_slice() || command.has_set_photo();
-}
-
 }  // namespace
 
 CommandIntake::CommandIntake(AgentControl& control, std::string agent_id, CommandLimits limits,
@@ -96,7 +88,10 @@ Reply CommandIntake::Check(std::string_view sender, std::optional<std::string_vi
   station_heard = true;
   try {
     return validator_.Validate(
-        command, ValidationNeedsState(command) ? control_.State() : kapfix::v1::AgentState());
+        // Only the commands whose ranges depend on it take a state snapshot (it takes the lock
+        // the control thread reports its mode and results under): not request_state.
+        command,
+        CommandValidator::NeedsState(command) ? control_.State() : kapfix::v1::AgentState());
   } catch (const std::exception& failure) {
     reply.set_error(kapfix::v1::ERROR_CODE_INTERNAL);
     reply.set_reason(std::string("the agent could not report its state: ") + failure.what());

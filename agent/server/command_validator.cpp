@@ -253,6 +253,24 @@ std::string UnknownCommandReason(const Command& command) {
 
 }  // namespace
 
+bool CommandValidator::NeedsState(const kapfix::v1::Command& command) {
+  if (command.has_select_slice()) return true;
+  const google::protobuf::OneofDescriptor& oneof =
+      *kapfix::v1::Command::descriptor()->oneof_decl(0);
+  const google::protobuf::FieldDescriptor* set =
+      command.GetReflection()->GetOneofFieldDescriptor(command, &oneof);
+  if (set == nullptr || set->message_type() == nullptr) return false;
+  const google::protobuf::Descriptor& type = *set->message_type();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const kapfix::v1::SettingOptions* options = kapfix::v1::SettingOf(*type.field(i));
+    if (options != nullptr && (options->frame_side() != kapfix::v1::FRAME_SIDE_UNSPECIFIED ||
+                               !options->at_most().empty())) {
+      return true;
+    }
+  }
+  return false;
+}
+
 CommandValidator::CommandValidator(CommandLimits limits) : limits_(limits) {}
 
 Reply CommandValidator::Validate(const Command& command,

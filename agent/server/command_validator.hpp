@@ -35,6 +35,12 @@ class CommandValidator {
   kapfix::v1::Reply Validate(const kapfix::v1::Command& command,
                              const kapfix::v1::AgentState& current) const;
 
+  // Whether Validate reads `current` for this command: select_slice, and a settings command
+  // whose message has a field capped by the frame or bounded by another field (the schema's
+  // frame_side and at_most). The others are validated against an empty state, so the caller
+  // need not take a snapshot of the agent's state for them.
+  static bool NeedsState(const kapfix::v1::Command& command);
+
   const CommandLimits& limits() const { return limits_; }
 
  private:

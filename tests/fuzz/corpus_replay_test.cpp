@@ -194,35 +194,17 @@ TEST(SubscriptionSequenceTest, AnUnsubscriptionFreesASlot) {
   EXPECT_EQ(FuzzSubscriptions(input.data(), input.size()), 5U);
 }
 
+// A subscription to topic "a" (ZMTP: 0x01, then the topic).
+const std::string kSubscribeA = std::string("\x01") + "a";
+
 TEST(SubscriptionSequenceTest, GonePeersMakeRoomForNewOnes) {
   // Three peers fill the book; a fourth is refused while they stay, admitted once one went.
-  const std::vector<std::uint8_t> full = Records({{0,
-                                                   "\x01"
-                                                   "a"},
-                                                  {1,
-                                                   "\x01"
-                                                   "a"},
-                                                  {2,
-                                                   "\x01"
-                                                   "a"},
-                                                  {3,
-                                                   "\x01"
-                                                   "a"}});
+  const std::vector<std::uint8_t> full =
+      Records({{0, kSubscribeA}, {1, kSubscribeA}, {2, kSubscribeA}, {3, kSubscribeA}});
   EXPECT_EQ(FuzzSubscriptions(full.data(), full.size()), 3U);
   // Slot 0's connection closes (its new one sends no subscription).
-  const std::vector<std::uint8_t> room = Records({{0,
-                                                   "\x01"
-                                                   "a"},
-                                                  {1,
-                                                   "\x01"
-                                                   "a"},
-                                                  {2,
-                                                   "\x01"
-                                                   "a"},
-                                                  {0x80, "\x07"},
-                                                  {3,
-                                                   "\x01"
-                                                   "a"}});
+  const std::vector<std::uint8_t> room = Records(
+      {{0, kSubscribeA}, {1, kSubscribeA}, {2, kSubscribeA}, {0x80, "\x07"}, {3, kSubscribeA}});
   EXPECT_EQ(FuzzSubscriptions(room.data(), room.size()), 4U);
 }
 

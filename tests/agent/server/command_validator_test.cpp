@@ -43,6 +43,31 @@ Command Gains(float p) {
   return command;
 }
 
+// The command path takes a snapshot of the agent's state only when Validate reads it: the
+// frame size caps the search settings, the photo window is bounded by its cap, select_slice
+// needs the slice count; gains, camera, lens, video and request_state read nothing of it.
+TEST(CommandValidatorNeedsStateTest, OnlyCommandsWhoseRangesDependOnTheStateNeedIt) {
+  Command search;
+  search.mutable_set_search();
+  Command photo;
+  photo.mutable_set_photo();
+  Command slice;
+  slice.set_select_slice(1);
+  EXPECT_TRUE(CommandValidator::NeedsState(search));
+  EXPECT_TRUE(CommandValidator::NeedsState(photo));
+  EXPECT_TRUE(CommandValidator::NeedsState(slice));
+  Command other;
+  other.mutable_request_state();
+  EXPECT_FALSE(CommandValidator::NeedsState(other));
+  other.mutable_set_gains();
+  EXPECT_FALSE(CommandValidator::NeedsState(other));
+  other.mutable_set_camera();
+  EXPECT_FALSE(CommandValidator::NeedsState(other));
+  other.mutable_set_lens();
+  EXPECT_FALSE(CommandValidator::NeedsState(other));
+  EXPECT_FALSE(CommandValidator::NeedsState(Command()));
+}
+
 TEST(CommandValidatorGainsTest, AcceptsAPartialUpdateInRange) {
   Command command;
   command.mutable_set_gains()->set_p(0.8F);
