@@ -12,6 +12,37 @@ namespace {
 constexpr int kCellW = 78, kCellH = 26;         // [px]
 constexpr int kRowLabelW = 130, kHeaderH = 90;  // [px]
 constexpr double kFont = 0.4;
+constexpr int kLabelLines = 3;  // header lines a column label may take
+
+int TextWidth(const std::string& text) {
+  int baseline = 0;
+  return cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, kFont, 1, &baseline).width;
+}
+
+// A column label in lines that each fit a cell, broken after a '/', '_', '.' or ' ' where one
+// is near, else at the last character that fits; what still does not fit after kLabelLines
+// lines is cut with "..".
+std::vector<std::string> ColumnLabelLines(const std::string& label) {
+  const int width = kCellW - 4;
+  std::vector<std::string> lines;
+  std::string rest = label;
+  while (!rest.empty() && static_cast<int>(lines.size()) < kLabelLines) {
+    std::size_t fit = rest.size();
+    while (fit > 1 && TextWidth(rest.substr(0, fit)) > width) --fit;
+    if (fit < rest.size()) {
+      const std::size_t brk = rest.find_last_of("/_. ", fit - 1);
+      if (brk != std::string::npos && brk + 1 >= fit / 2) fit = brk + 1;
+    }
+    lines.push_back(rest.substr(0, fit));
+    rest.erase(0, fit);
+  }
+  if (!rest.empty()) {
+    std::string& last = lines.back();
+    while (last.size() > 1 && TextWidth(last + "..") > width) last.pop_back();
+    last += "..";
+  }
+  return lines;
+}
 
 }  // namespace
 
@@ -41,15 +72,14 @@ cv::Mat RenderHeatMap(const std::string& title, const std::vector<std::string>& 
   cv::Mat colour;
   cv::applyColorMap(shade, colour, cv::COLORMAP_VIRIDIS);
   for (std::size_t c = 0; c < cols; ++c) {
-    // Column labels at an angle would need a rotated text: written in two lines instead.
-    const std::string& label = column_labels[c];
+    // Column labels at an angle would need a rotated text: wrapped to the cell's width instead,
+    // bottom-aligned above the grid.
+    const std::vector<std::string> lines = ColumnLabelLines(column_labels[c]);
     const int x = kRowLabelW + static_cast<int>(c) * kCellW + 2;
-    const std::size_t cut = label.size() > 11 ? label.size() / 2 : label.size();
-    cv::putText(canvas, label.substr(0, cut), {x, kHeaderH - 24}, cv::FONT_HERSHEY_SIMPLEX, kFont,
-                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    if (cut < label.size()) {
-      cv::putText(canvas, label.substr(cut), {x, kHeaderH - 8}, cv::FONT_HERSHEY_SIMPLEX, kFont,
-                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    for (std::size_t l = 0; l < lines.size(); ++l) {
+      const int y = kHeaderH - 8 - static_cast<int>(lines.size() - 1 - l) * 16;
+      cv::putText(canvas, lines[l], {x, y}, cv::FONT_HERSHEY_SIMPLEX, kFont, cv::Scalar(0, 0, 0), 1,
+                  cv::LINE_AA);
     }
   }
   for (std::size_t r = 0; r < rows; ++r) {
