@@ -125,6 +125,22 @@ TEST_F(AravisFakeCameraTest, AHigherGainReachesTheCameraAndBrightensItsFrames) {
   EXPECT_TRUE(SomeOfTheNextFrames(source, [before](double mean) { return mean > before + 50; }));
 }
 
+// Aravis's fake camera has GainAuto but no ExposureAuto: automatic exposure is refused by
+// name, and switching it off needs nothing (the camera is manual).
+TEST_F(AravisFakeCameraTest, AutomaticExposureOnACameraWithoutItIsRefusedByName) {
+  AravisFrameSource source(options_);
+  std::string error;
+  ASSERT_TRUE(source.Open(&error)) << error;
+  CameraSettings on;
+  on.set_auto_exposure(true);
+  EXPECT_FALSE(source.Apply(on, &error));
+  EXPECT_EQ(error,
+            "Aravis camera 'Fake_1': auto_exposure = true: the camera has no ExposureAuto feature");
+  CameraSettings off;
+  off.set_auto_exposure(false);
+  EXPECT_TRUE(source.Apply(off, &error)) << error;
+}
+
 TEST_F(AravisFakeCameraTest, SettingsBeforeOpenAreRefusedNamingTheCamera) {
   AravisFrameSource source(options_);
   CameraSettings settings;
