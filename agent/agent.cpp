@@ -82,18 +82,6 @@ std::string LoopbackAddress(const std::string& address) {
   return "tcp://127.0.0.1" + address.substr(colon);
 }
 
-// Applies the configured gain and exposure; a camera that refuses them still flies.
-void ApplyCameraSettings(const CameraConfig& camera, FrameSource& source) {
-  std::string why;
-  const kapfix::v1::CameraSettings& s = camera.settings;
-  if (s.has_gain_db() && !source.SetGain(s.gain_db(), &why)) {
-    spdlog::error("camera gain not set: {}", why);
-  }
-  if (s.has_exposure_us() && !source.SetExposure(s.exposure_us(), &why)) {
-    spdlog::error("camera exposure not set: {}", why);
-  }
-}
-
 // The link's CurveZMQ keys, when configured. A fresh install (no station authorised yet)
 // serves this machine only: `link` is narrowed to loopback without keys. Throws
 // std::runtime_error when the keys cannot be read.
@@ -323,13 +311,8 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
                                                  config_.servo.tilt.limits, clock, 1.0 / fps);
   // Start-up waits for hardware: a device that is not there yet is said once and retried
   // with back-off by the pipeline, rather than ending the agent (issue 10).
-  const CameraConfig configured_camera = config_.camera;
-  pipeline.on_camera_open = [configured_camera](FrameSource& source) {
-    ApplyCameraSettings(configured_camera, source);
-  };
-  if (source_->Open(&error)) {
-    ApplyCameraSettings(configured_camera, *source_);
-  } else {
+  pipeline.camera_settings = config_.camera.settings;  // applied by the pipeline once open
+  if (!source_->Open(&error)) {
     pipeline.camera_open = false;
     pipeline.camera_error = error;
     spdlog::warn("camera: {}", error);
@@ -410,9 +393,8 @@ void Agent::StartCommandServer(const std::optional<kapfix::link::CurveServerKeys
       .photos = *photos_,
       .video = *video_,
       .apply_camera =
-          [running](const CameraConfig& camera) {
-            running->RequestCameraChange(
-                [camera](FrameSource& source) { ApplyCameraSettings(camera, source); });
+          [running](const kapfix::v1::CameraSettings& camera) {
+            running->SetCameraSettings(camera);
           },
       .free_swing_recording_possible = true,
   });

@@ -1,7 +1,7 @@
 // The only translation unit that includes Aravis and glib (SPEC §8: glib's `signals` member
-
-#include "common/time/steady_clock.hpp"
 // clashes with Qt's keyword, so these headers must not leak into any header).
+#include "agent/capture/aravis_frame_source.hpp"
+
 #include <arv.h>
 #include <spdlog/spdlog.h>
 
@@ -9,7 +9,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "agent/capture/aravis_frame_source.hpp"
+#include "agent/capture/camera_setting_controls.hpp"
+#include "common/time/steady_clock.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -46,6 +47,7 @@ struct AravisFrameSource::Impl {
   ArvStream* stream = nullptr;
   std::string id;  // the device id once open
   std::uint64_t next_index = 0;
+  CameraSettingControls controls;  // the settings this backend applies (made in the constructor)
 
   std::string Name() const {
     const std::string& shown = id.empty() ? options.camera_id : id;
@@ -145,6 +147,71 @@ struct AravisFrameSource::Impl {
     if (gerror) return CloseAndFail("cannot start acquisition", &gerror, error);
     return true;
   }
+  // [dB] GenICam's Gain, GainAuto turned off first; checked against the camera's bounds.
+  bool SetGain(double db, std::string* reason) const {
+    if (!std::isfinite(db)) return Refuse("not a finite number", reason);
+    GError* gerror = nullptr;
+    if (!arv_camera_is_gain_available(camera, &gerror)) {
+      return Refuse("the camera has no Gain feature", &gerror, reason);
+    }
+    if (arv_camera_is_gain_auto_available(camera, nullptr)) {
+      arv_camera_set_gain_auto(camera, ARV_AUTO_OFF, &gerror);
+      TakeError(&gerror);  // a camera without GainAuto is already manual
+    }
+    double low = 0;
+    double high = 0;
+    arv_camera_get_gain_bounds(camera, &low, &high, &gerror);
+    if (!gerror && (db < low || db > high)) {
+      return Refuse(fmt::format("outside its range [{:g}, {:g}] dB", low, high), reason);
+    }
+    TakeError(&gerror);
+    arv_camera_set_gain(camera, db, &gerror);
+    if (gerror) return Refuse("cannot set it", &gerror, reason);
+    return true;
+  }
+  // [µs] GenICam's ExposureTime, ExposureAuto turned off first; checked against its bounds.
+  bool SetExposure(double us, std::string* reason) const {
+    if (!std::isfinite(us) || us <= 0) return Refuse("must be > 0 µs", reason);
+    GError* gerror = nullptr;
+    if (!arv_camera_is_exposure_time_available(camera, &gerror)) {
+      return Refuse("the camera has no ExposureTime feature", &gerror, reason);
+    }
+    if (arv_camera_is_exposure_auto_available(camera, nullptr)) {
+      arv_camera_set_exposure_time_auto(camera, ARV_AUTO_OFF, &gerror);
+      TakeError(&gerror);
+    }
+    double low = 0;
+    double high = 0;
+    arv_camera_get_exposure_time_bounds(camera, &low, &high, &gerror);
+    if (!gerror && (us < low || us > high)) {
+      return Refuse(fmt::format("outside its range [{:g}, {:g}] µs", low, high), reason);
+    }
+    TakeError(&gerror);
+    arv_camera_set_exposure_time(camera, us, &gerror);
+    if (gerror) return Refuse("cannot set it", &gerror, reason);
+    return true;
+  }
+  // GenICam's ExposureAuto: Continuous when on, Off when off (a camera without the feature is
+  // always manual, so off needs nothing).
+  bool SetAutoExposure(bool on, std::string* reason) const {
+    GError* gerror = nullptr;
+    if (!arv_camera_is_exposure_auto_available(camera, &gerror)) {
+      if (!on) return true;
+      return Refuse("the camera has no ExposureAuto feature", &gerror, reason);
+    }
+    arv_camera_set_exposure_time_auto(camera, on ? ARV_AUTO_CONTINUOUS : ARV_AUTO_OFF, &gerror);
+    if (gerror) return Refuse("cannot set ExposureAuto", &gerror, reason);
+    return true;
+  }
+  static bool Refuse(const std::string& what, std::string* reason) {
+    if (reason) *reason = what;
+    return false;
+  }
+  // `what`, with the GError's message when there is one.
+  static bool Refuse(const std::string& what, GError** gerror, std::string* reason) {
+    const std::string detail = TakeError(gerror);
+    return Refuse(detail.empty() ? what : what + " (" + detail + ")", reason);
+  }
   // Converts one complete buffer; false + reason for a pixel format we do not read.
   bool Convert(ArvBuffer* buffer, cv::Mat* bgr, std::string* reason) const {
     const int width = arv_buffer_get_image_width(buffer);
@@ -186,6 +253,15 @@ struct AravisFrameSource::Impl {
 AravisFrameSource::AravisFrameSource(AravisFrameSourceOptions options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = std::move(options);
+  const Impl* d = impl_.get();
+  using kapfix::v1::CameraSettings;
+  impl_->controls
+      .Add(CameraSettings::kGainDbFieldNumber,
+           [d](double db, std::string* reason) { return d->SetGain(db, reason); })
+      .Add(CameraSettings::kExposureUsFieldNumber,
+           [d](double us, std::string* reason) { return d->SetExposure(us, reason); })
+      .Add(CameraSettings::kAutoExposureFieldNumber,
+           [d](double on, std::string* reason) { return d->SetAutoExposure(on != 0, reason); });
 }
 
 AravisFrameSource::~AravisFrameSource() { impl_->Close(); }
@@ -236,67 +312,10 @@ bool AravisFrameSource::Grab(CapturedFrame* frame, std::string* error) {
                 error);
 }
 
-bool AravisFrameSource::SetGain(double gain_db, std::string* error) {
+bool AravisFrameSource::Apply(const kapfix::v1::CameraSettings& settings, std::string* error) {
   Impl& d = *impl_;
   if (d.camera == nullptr) return d.Fail("not open", error);
-  if (!std::isfinite(gain_db)) return d.Fail("gain is not finite", error);
-  GError* gerror = nullptr;
-  if (!arv_camera_is_gain_available(d.camera, &gerror)) {
-    const std::string reason = TakeError(&gerror);
-    return d.Fail("has no Gain feature" + (reason.empty() ? "" : " (" + reason + ")"), error);
-  }
-  if (arv_camera_is_gain_auto_available(d.camera, nullptr)) {
-    arv_camera_set_gain_auto(d.camera, ARV_AUTO_OFF, &gerror);
-    TakeError(&gerror);  // a camera without GainAuto is already manual
-  }
-  double low = 0;
-  double high = 0;
-  arv_camera_get_gain_bounds(d.camera, &low, &high, &gerror);
-  if (!gerror && (gain_db < low || gain_db > high)) {
-    return d.Fail(
-        fmt::format("gain {:g} dB is outside its range [{:g}, {:g}] dB", gain_db, low, high),
-        error);
-  }
-  TakeError(&gerror);
-  arv_camera_set_gain(d.camera, gain_db, &gerror);
-  if (gerror) {
-    const std::string reason = TakeError(&gerror);
-    return d.Fail(fmt::format("cannot set gain {:g} dB ({})", gain_db, reason), error);
-  }
-  return true;
-}
-
-bool AravisFrameSource::SetExposure(double exposure_us, std::string* error) {
-  Impl& d = *impl_;
-  if (d.camera == nullptr) return d.Fail("not open", error);
-  if (!std::isfinite(exposure_us) || exposure_us <= 0) {
-    return d.Fail("exposure must be > 0 µs, got " + std::to_string(exposure_us), error);
-  }
-  GError* gerror = nullptr;
-  if (!arv_camera_is_exposure_time_available(d.camera, &gerror)) {
-    const std::string reason = TakeError(&gerror);
-    return d.Fail("has no ExposureTime feature" + (reason.empty() ? "" : " (" + reason + ")"),
-                  error);
-  }
-  if (arv_camera_is_exposure_auto_available(d.camera, nullptr)) {
-    arv_camera_set_exposure_time_auto(d.camera, ARV_AUTO_OFF, &gerror);
-    TakeError(&gerror);
-  }
-  double low = 0;
-  double high = 0;
-  arv_camera_get_exposure_time_bounds(d.camera, &low, &high, &gerror);
-  if (!gerror && (exposure_us < low || exposure_us > high)) {
-    return d.Fail(fmt::format("exposure {:g} µs is outside its range [{:g}, {:g}] µs", exposure_us,
-                              low, high),
-                  error);
-  }
-  TakeError(&gerror);
-  arv_camera_set_exposure_time(d.camera, exposure_us, &gerror);
-  if (gerror) {
-    const std::string reason = TakeError(&gerror);
-    return d.Fail(fmt::format("cannot set exposure {:g} µs ({})", exposure_us, reason), error);
-  }
-  return true;
+  return d.controls.Apply(settings, d.Name(), error);
 }
 
 std::string AravisFrameSource::Describe() const {

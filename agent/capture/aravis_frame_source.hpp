@@ -25,9 +25,10 @@ struct AravisFrameSourceOptions {
 // A GenICam camera (USB3 Vision or GigE Vision; IDS uEye class) through the Aravis C API
 // (Debian's libaravis-dev, aravis-0.8).
 //
-// Frames arrive as Mono8, Bayer??8, RGB8 or BGR8 and are converted to BGR. Gain [dB] and
-// exposure [µs] use GenICam's Gain and ExposureTime (auto modes turned off) and are checked
-// against the camera's bounds. Incomplete frames (GigE packet loss) are skipped; Grab fails
+// Frames arrive as Mono8, Bayer??8, RGB8 or BGR8 and are converted to BGR. The camera settings
+// use GenICam's features: gain [dB] Gain, exposure [µs] ExposureTime (their auto modes turned
+// off; both checked against the camera's bounds), automatic exposure ExposureAuto
+// (Continuous / Off). Incomplete frames (GigE packet loss) are skipped; Grab fails
 // only when no complete frame arrives within grab_timeout_ms.
 //
 // Aravis (and the glib headers it brings, whose `signals` clashes with Qt) stays inside the
@@ -42,8 +43,8 @@ class AravisFrameSource : public FrameSource {
 
   bool Open(std::string* error) override;
   bool Grab(CapturedFrame* frame, std::string* error) override;
-  bool SetGain(double gain_db, std::string* error) override;
-  bool SetExposure(double exposure_us, std::string* error) override;
+  // Fails "not open" before Open.
+  bool Apply(const kapfix::v1::CameraSettings& settings, std::string* error) override;
   std::string Describe() const override;
 
   // False in a build without Aravis (the stub).

@@ -34,10 +34,7 @@ bool AravisFrameSource::Open(std::string* error) {
 bool AravisFrameSource::Grab(CapturedFrame* /*frame*/, std::string* error) {
   return BuiltWithout(impl_->options.camera_id, error);
 }
-bool AravisFrameSource::SetGain(double /*gain_db*/, std::string* error) {
-  return BuiltWithout(impl_->options.camera_id, error);
-}
-bool AravisFrameSource::SetExposure(double /*exposure_us*/, std::string* error) {
+bool AravisFrameSource::Apply(const kapfix::v1::CameraSettings& /*settings*/, std::string* error) {
   return BuiltWithout(impl_->options.camera_id, error);
 }
 std::string AravisFrameSource::Describe() const { return "aravis (built without Aravis)"; }

@@ -1,7 +1,12 @@
 #include "agent/capture/fake_frame_source.hpp"
 
-#include <cmath>
+#include <google/protobuf/descriptor.h>
+
+#include <algorithm>
 #include <stdexcept>
+
+#include "agent/capture/camera_setting_controls.hpp"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 
@@ -24,6 +29,7 @@ bool FakeFrameSource::Open(std::string* error) {
   }
   open_ = true;
   next_index_ = 0;
+  applied_.Clear();  // a camera that was away (power-cycled) has forgotten its settings
   ++open_count_;
   return true;
 }
@@ -45,22 +51,45 @@ bool FakeFrameSource::Grab(CapturedFrame* frame, std::string* error) {
   return true;
 }
 
-bool FakeFrameSource::SetGain(double gain_db, std::string* error) {
-  if (!std::isfinite(gain_db)) {
-    if (error) *error = "fake camera: gain is not finite";
-    return false;
+bool FakeFrameSource::Apply(const kapfix::v1::CameraSettings& settings, std::string* error) {
+  ++apply_count_;
+  // A control for every field of the message, except those the test took away.
+  CameraSettingControls controls;
+  const google::protobuf::Descriptor& message = *kapfix::v1::CameraSettings::descriptor();
+  for (int i = 0; i < message.field_count(); ++i) {
+    const google::protobuf::FieldDescriptor* field = message.field(i);
+    if (std::find(lacking_.begin(), lacking_.end(), field->number()) != lacking_.end()) continue;
+    controls.Add(field->number(), [this, field](double value, std::string* reason) {
+      return Keep(*field, value, reason);
+    });
   }
-  gain_db_ = gain_db;
-  return true;
+  return controls.Apply(settings, "fake camera", error);
 }
 
-bool FakeFrameSource::SetExposure(double exposure_us, std::string* error) {
-  if (!std::isfinite(exposure_us) || exposure_us <= 0) {
-    if (error) *error = "fake camera: exposure must be > 0 µs";
+bool FakeFrameSource::Keep(const google::protobuf::FieldDescriptor& field, double value,
+                           std::string* reason) {
+  // The fake camera's range is the schema's.
+  const std::string out_of_range =
+      kapfix::v1::CheckSetting(*applied_.GetDescriptor(), field.name(), value, field.name());
+  if (!out_of_range.empty()) {
+    if (reason) *reason = out_of_range;
     return false;
   }
-  exposure_us_ = exposure_us;
-  return true;
+  const google::protobuf::Reflection& reflection = *applied_.GetReflection();
+  switch (field.cpp_type()) {
+    case google::protobuf::FieldDescriptor::CPPTYPE_FLOAT:
+      reflection.SetFloat(&applied_, &field, static_cast<float>(value));
+      return true;
+    case google::protobuf::FieldDescriptor::CPPTYPE_DOUBLE:
+      reflection.SetDouble(&applied_, &field, value);
+      return true;
+    case google::protobuf::FieldDescriptor::CPPTYPE_BOOL:
+      reflection.SetBool(&applied_, &field, value != 0);
+      return true;
+    default:
+      if (reason) *reason = "the fake camera keeps only float and bool settings";
+      return false;
+  }
 }
 
 std::string FakeFrameSource::Describe() const {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <google/protobuf/descriptor.h>
+
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
@@ -21,8 +23,9 @@ class FakeFrameSource : public FrameSource {
   bool Open(std::string* error) override;
   // A copy of the next frame, as a camera hands out a fresh buffer each time.
   bool Grab(CapturedFrame* frame, std::string* error) override;
-  bool SetGain(double gain_db, std::string* error) override;
-  bool SetExposure(double exposure_us, std::string* error) override;
+  // Keeps every setting in the schema's range (applied()), except those LackControl names,
+  // which it refuses as a camera without that control does. Works before Open too.
+  bool Apply(const kapfix::v1::CameraSettings& settings, std::string* error) override;
   std::string Describe() const override;
 
   // The next Open fails while this is set (camera unplugged).
@@ -31,12 +34,20 @@ class FakeFrameSource : public FrameSource {
   // the sequence stopped.
   void FailNextGrabs(int count) { fail_grabs_ = count; }
 
-  double gain_db() const { return gain_db_; }           // [dB] last accepted
-  double exposure_us() const { return exposure_us_; }   // [µs] last accepted
+  // The camera has no control for the setting `field_number`
+  // (kapfix::v1::CameraSettings::k…FieldNumber).
+  void LackControl(int field_number) { lacking_.push_back(field_number); }
+
+  // Every setting accepted since the last Open (which forgets them, as a power-cycled camera
+  // does), the later value of a field replacing the earlier.
+  const kapfix::v1::CameraSettings& applied() const { return applied_; }
+  int apply_count() const { return apply_count_; }      // Apply calls
   int open_count() const { return open_count_; }        // successful Opens
   int open_attempts() const { return open_attempts_; }  // every Open, failed ones too
 
  private:
+  bool Keep(const google::protobuf::FieldDescriptor& field, double value, std::string* reason);
+
   std::vector<cv::Mat> frames_;
   std::int64_t frame_period_us_;
   std::uint64_t next_index_ = 0;
@@ -45,8 +56,9 @@ class FakeFrameSource : public FrameSource {
   int fail_grabs_ = 0;
   int open_count_ = 0;
   int open_attempts_ = 0;
-  double gain_db_ = 0;
-  double exposure_us_ = 0;
+  std::vector<int> lacking_;
+  kapfix::v1::CameraSettings applied_;
+  int apply_count_ = 0;
 };
 
 }  // namespace kapfix::agent

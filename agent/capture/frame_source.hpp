@@ -4,6 +4,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "kapfix/v1/settings.pb.h"
+
 namespace kapfix::agent {
 
 struct CapturedFrame {
@@ -24,10 +26,11 @@ class FrameSource {
   virtual bool Open(std::string* error) = 0;
   // Waits for the next frame; false + reason on a lost camera.
   virtual bool Grab(CapturedFrame* frame, std::string* error) = 0;
-  // [dB] for GenICam; see each backend for what its camera understands.
-  virtual bool SetGain(double gain_db, std::string* error) = 0;
-  // [µs] Turns automatic exposure off.
-  virtual bool SetExposure(double exposure_us, std::string* error) = 0;
+  // The operator's camera settings: every field set is applied (a field left unset leaves the
+  // camera's own), each in the unit the message gives it; see each backend for what its camera
+  // understands. False + one line naming the camera and each setting it refused or does not
+  // have (CameraSettingControls); the others are still applied.
+  virtual bool Apply(const kapfix::v1::CameraSettings& settings, std::string* error) = 0;
   // One line for logs and the station, e.g. "v4l2 /dev/video0 640x480 @ 30 fps".
   virtual std::string Describe() const = 0;
 };

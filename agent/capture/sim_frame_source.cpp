@@ -16,6 +16,12 @@ SimFrameSource::SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, doub
     : platform_(std::move(platform)), fps_(fps), real_time_(real_time) {
   if (!platform_) throw std::invalid_argument("SimFrameSource: no platform");
   if (!std::isfinite(fps_) || fps_ <= 0) throw std::invalid_argument("SimFrameSource: fps ≤ 0");
+  using kapfix::v1::CameraSettings;
+  controls_
+      .Add(CameraSettings::kGainDbFieldNumber,
+           [this](double db, std::string* reason) { return SetGain(db, reason); })
+      .Add(CameraSettings::kAutoExposureFieldNumber,
+           [this](double on, std::string* reason) { return SetAutoExposure(on != 0, reason); });
 }
 
 bool SimFrameSource::Open(std::string* /*error*/) {
@@ -42,7 +48,12 @@ bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
   }
   const SimulatedFrame captured = platform_->CaptureFrame();
   const cv::Point2d offset = platform_->ViewOffset();
-  frame->image = captured.image;
+  if (brightness_ == 1.0) {
+    frame->image = captured.image;
+  } else {
+    // A new image: the platform's may be shared. Saturates at 255 as a sensor does.
+    captured.image.convertTo(frame->image, -1, brightness_);
+  }
   frame->index = next_index_;
   frame->capture_time_us =
       static_cast<std::int64_t>(std::llround(static_cast<double>(next_index_) * 1e6 / fps_));
@@ -55,9 +66,24 @@ bool SimFrameSource::Grab(CapturedFrame* frame, std::string* error) {
   return true;
 }
 
-bool SimFrameSource::SetGain(double /*gain_db*/, std::string* /*error*/) { return true; }
+bool SimFrameSource::Apply(const kapfix::v1::CameraSettings& settings, std::string* error) {
+  return controls_.Apply(settings, Describe(), error);
+}
 
-bool SimFrameSource::SetExposure(double /*exposure_us*/, std::string* /*error*/) { return true; }
+bool SimFrameSource::SetGain(double db, std::string* reason) {
+  if (!std::isfinite(db)) {
+    if (reason) *reason = "not a finite number";
+    return false;
+  }
+  brightness_ = std::pow(10.0, db / 20.0);  // gain [dB] of the signal's amplitude
+  return true;
+}
+
+bool SimFrameSource::SetAutoExposure(bool on, std::string* reason) {
+  if (on) return true;  // the simulated frames are the auto-exposed ones
+  if (reason) *reason = "the simulated camera is always automatically exposed";
+  return false;
+}
 
 std::string SimFrameSource::Describe() const {
   const cv::Size size = platform_->options().camera.frame_size;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "agent/capture/camera_setting_controls.hpp"
 #include "agent/capture/frame_source.hpp"
 #include "common/sim/simulated_platform.hpp"
 
@@ -30,12 +31,16 @@ class SimFrameSource : public FrameSource {
   // flight at its true pace; otherwise frames come as fast as they are asked for (benchmarks,
   // tests).
   SimFrameSource(std::shared_ptr<SimulatedPlatform> platform, double fps, bool real_time = false);
+  SimFrameSource(const SimFrameSource&) = delete;  // its controls point at it
+  SimFrameSource& operator=(const SimFrameSource&) = delete;
 
   bool Open(std::string* error) override;
   bool Grab(CapturedFrame* frame, std::string* error) override;
-  // The simulated camera has no gain or exposure: accepted and ignored.
-  bool SetGain(double gain_db, std::string* error) override;
-  bool SetExposure(double exposure_us, std::string* error) override;
+  // The simulated camera has a gain [dB]: it scales the frame's brightness (saturating at
+  // 255), the frames after it was set. Its exposure is automatic (the world's exposure steps):
+  // automatic exposure on is what it does, a fixed exposure or automatic exposure off is
+  // refused by name. Call from the thread that grabs.
+  bool Apply(const kapfix::v1::CameraSettings& settings, std::string* error) override;
   std::string Describe() const override;
 
   // [px] SimulatedPlatform::ViewOffset of frame `index` while it was captured; nullopt when
@@ -46,6 +51,9 @@ class SimFrameSource : public FrameSource {
   std::uint64_t dropped() const { return dropped_; }
 
  private:
+  bool SetGain(double db, std::string* reason);
+  bool SetAutoExposure(bool on, std::string* reason);
+
   std::shared_ptr<SimulatedPlatform> platform_;
   double fps_;
   bool real_time_;
@@ -55,6 +63,8 @@ class SimFrameSource : public FrameSource {
   std::uint64_t dropped_ = 0;
   mutable std::mutex truth_mutex_;
   std::deque<std::pair<std::uint64_t, cv::Point2d>> truth_;
+  double brightness_ = 1.0;  // [1] the gain as a factor on the frame's values
+  CameraSettingControls controls_;
 };
 
 }  // namespace kapfix::agent

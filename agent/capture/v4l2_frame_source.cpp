@@ -28,6 +28,14 @@ bool IsIndex(const std::string& text) {
 constexpr double kV4l2ExposureUnitUs = 100;
 // V4L2_EXPOSURE_MANUAL in enum v4l2_exposure_auto_type.
 constexpr double kV4l2ExposureManual = 1;
+// V4L2_EXPOSURE_APERTURE_PRIORITY: automatic exposure time, the automatic mode UVC webcams have
+// (V4L2_EXPOSURE_AUTO, 0, also sets the iris, which they do not have).
+constexpr double kV4l2ExposureAuto = 3;
+
+bool Refuse(const std::string& what, std::string* reason) {
+  if (reason) *reason = what;
+  return false;
+}
 
 }  // namespace
 
@@ -53,7 +61,16 @@ bool V4l2FrameSourceOptions::IsValid(std::string* error) const {
   return true;
 }
 
-V4l2FrameSource::V4l2FrameSource(V4l2FrameSourceOptions options) : options_(std::move(options)) {}
+V4l2FrameSource::V4l2FrameSource(V4l2FrameSourceOptions options) : options_(std::move(options)) {
+  using kapfix::v1::CameraSettings;
+  controls_
+      .Add(CameraSettings::kGainDbFieldNumber,
+           [this](double value, std::string* reason) { return SetGain(value, reason); })
+      .Add(CameraSettings::kExposureUsFieldNumber,
+           [this](double us, std::string* reason) { return SetExposure(us, reason); })
+      .Add(CameraSettings::kAutoExposureFieldNumber,
+           [this](double on, std::string* reason) { return SetAutoExposure(on != 0, reason); });
+}
 
 std::string V4l2FrameSource::DevicePath() const {
   return IsIndex(options_.device) ? "/dev/video" + options_.device : options_.device;
@@ -144,28 +161,33 @@ bool V4l2FrameSource::Grab(CapturedFrame* frame, std::string* error) {
   return true;
 }
 
-bool V4l2FrameSource::SetGain(double gain_db, std::string* error) {
+bool V4l2FrameSource::Apply(const kapfix::v1::CameraSettings& settings, std::string* error) {
   if (!capture_.isOpened()) return Fail("not open", error);
-  if (!std::isfinite(gain_db)) return Fail("gain is not finite", error);
-  if (!capture_.set(cv::CAP_PROP_GAIN, gain_db)) {
-    return Fail("the driver refused gain " + std::to_string(gain_db) +
-                    " (no gain control, or out of its range)",
-                error);
+  return controls_.Apply(settings, "V4L2 camera " + DevicePath(), error);
+}
+
+bool V4l2FrameSource::SetGain(double value, std::string* reason) {
+  if (!std::isfinite(value)) return Refuse("not a finite number", reason);
+  if (!capture_.set(cv::CAP_PROP_GAIN, value)) {
+    return Refuse("the driver refused it (no gain control, or out of its range)", reason);
   }
   return true;
 }
 
-bool V4l2FrameSource::SetExposure(double exposure_us, std::string* error) {
-  if (!capture_.isOpened()) return Fail("not open", error);
-  if (!std::isfinite(exposure_us) || exposure_us <= 0) {
-    return Fail("exposure must be > 0 µs, got " + std::to_string(exposure_us), error);
-  }
+bool V4l2FrameSource::SetExposure(double us, std::string* reason) {
+  if (!std::isfinite(us) || us <= 0) return Refuse("must be > 0 µs", reason);
   if (!capture_.set(cv::CAP_PROP_AUTO_EXPOSURE, kV4l2ExposureManual)) {
-    return Fail("the driver refused manual exposure", error);
+    return Refuse("the driver refused manual exposure", reason);
   }
-  const double units = std::max(1.0, std::round(exposure_us / kV4l2ExposureUnitUs));
-  if (!capture_.set(cv::CAP_PROP_EXPOSURE, units)) {
-    return Fail("the driver refused exposure " + std::to_string(exposure_us) + " µs", error);
+  const double units = std::max(1.0, std::round(us / kV4l2ExposureUnitUs));
+  if (!capture_.set(cv::CAP_PROP_EXPOSURE, units)) return Refuse("the driver refused it", reason);
+  return true;
+}
+
+bool V4l2FrameSource::SetAutoExposure(bool on, std::string* reason) {
+  if (!capture_.set(cv::CAP_PROP_AUTO_EXPOSURE, on ? kV4l2ExposureAuto : kV4l2ExposureManual)) {
+    return Refuse(
+        on ? "the driver has no automatic exposure" : "the driver refused manual exposure", reason);
   }
   return true;
 }

@@ -3,6 +3,7 @@
 #include <opencv2/videoio.hpp>
 #include <string>
 
+#include "agent/capture/camera_setting_controls.hpp"
 #include "agent/capture/frame_source.hpp"
 
 namespace kapfix::agent {
@@ -29,11 +30,12 @@ struct V4l2FrameSourceOptions {
 // driver queue (a stale frame is worse than none for the control loop), and logs what the
 // driver granted where it differs.
 //
-// Units: OpenCV passes CAP_PROP_* values to V4L2 unchanged. SetExposure turns auto exposure off
-// (V4L2_EXPOSURE_MANUAL = 1) and writes V4L2_CID_EXPOSURE_ABSOLUTE, whose unit is 100 µs, so
-// the value is converted. SetGain writes V4L2_CID_GAIN, whose unit the driver defines (UVC
-// webcams: a 0…255 index, not dB); the value is passed as it is — read the camera's range
-// with `v4l2-ctl -d DEV --list-ctrls`.
+// Camera settings: OpenCV passes CAP_PROP_* values to V4L2 unchanged. A fixed exposure [µs]
+// turns auto exposure off (V4L2_EXPOSURE_MANUAL = 1) and writes V4L2_CID_EXPOSURE_ABSOLUTE,
+// whose unit is 100 µs, so the value is converted; automatic exposure is
+// V4L2_EXPOSURE_APERTURE_PRIORITY (3). The gain writes V4L2_CID_GAIN, whose unit the driver
+// defines (UVC webcams: a 0…255 index, not dB); the value is passed as it is — read the
+// camera's range with `v4l2-ctl -d DEV --list-ctrls`.
 //
 // Grab retries a failed read (a signal interrupting OpenCV's select() or ioctl, EINTR) until
 // grab_timeout_ms, and only then reports the camera lost. Frames carry the driver's buffer
@@ -43,11 +45,13 @@ struct V4l2FrameSourceOptions {
 class V4l2FrameSource : public FrameSource {
  public:
   explicit V4l2FrameSource(V4l2FrameSourceOptions options);
+  V4l2FrameSource(const V4l2FrameSource&) = delete;  // its controls point at it
+  V4l2FrameSource& operator=(const V4l2FrameSource&) = delete;
 
   bool Open(std::string* error) override;
   bool Grab(CapturedFrame* frame, std::string* error) override;
-  bool SetGain(double gain_db, std::string* error) override;
-  bool SetExposure(double exposure_us, std::string* error) override;
+  // Fails "not open" before Open.
+  bool Apply(const kapfix::v1::CameraSettings& settings, std::string* error) override;
   std::string Describe() const override;
 
   // "/dev/videoN" for an index, the path otherwise.
@@ -55,11 +59,16 @@ class V4l2FrameSource : public FrameSource {
 
  private:
   bool Fail(const std::string& reason, std::string* error) const;
+  // The controls: false + the reason the driver refused.
+  bool SetGain(double value, std::string* reason);
+  bool SetExposure(double us, std::string* reason);
+  bool SetAutoExposure(bool on, std::string* reason);
 
   V4l2FrameSourceOptions options_;
   cv::VideoCapture capture_;
   std::uint64_t next_index_ = 0;
   int stamp_source_logged_ = 0;  // 0 none yet, 1 driver, 2 arrival
+  CameraSettingControls controls_;
 };
 
 }  // namespace kapfix::agent

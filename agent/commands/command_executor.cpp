@@ -58,7 +58,7 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
   if (!settings) return Refuse(kapfix::v1::ERROR_CODE_OUT_OF_RANGE, error);
   switch (command.command_case()) {
     case kapfix::v1::Command::kSetCamera:
-      if (targets_.apply_camera) targets_.apply_camera(settings->camera);
+      if (targets_.apply_camera) targets_.apply_camera(settings->camera.settings);
       break;
     case kapfix::v1::Command::kSetVideo:
       targets_.video.SetSettings(settings->video);

@@ -17,7 +17,7 @@ struct CommandTargets {
   PhotoTaker& photos;
   VideoDownlink& video;
   // Hands new camera settings to the capture thread (drivers are not thread-safe).
-  std::function<void(const CameraConfig&)> apply_camera;
+  std::function<void(const kapfix::v1::CameraSettings&)> apply_camera;
   bool free_swing_recording_possible = true;  // a recordings folder is configured
 };
 

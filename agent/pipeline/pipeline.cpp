@@ -30,6 +30,7 @@ Pipeline::Pipeline(FrameSource& source, LimitedServoDriver& servos, FrameProcess
                                                : std::make_shared<WorkQueue>("servo reopener", 1),
                      .on_health = [this](const DeviceHealth& health) { SetServoHealth(health); },
                  }) {
+  camera_settings_ = options_.camera_settings;
   belief_ = options_.servo_belief;
   if (!belief_) {
     // A fixed latency: the command sent actuation_delay_frames earlier, park before the first.
@@ -112,9 +113,21 @@ PipelineStats Pipeline::Run() {
   return stats;
 }
 
-void Pipeline::RequestCameraChange(std::function<void(FrameSource&)> change) {
+void Pipeline::SetCameraSettings(const kapfix::v1::CameraSettings& settings) {
   std::lock_guard lock(camera_mutex_);
-  camera_changes_.push_back(std::move(change));
+  camera_settings_ = settings;
+  camera_settings_new_ = true;
+}
+
+void Pipeline::ApplyCameraSettings() {
+  kapfix::v1::CameraSettings settings;
+  {
+    std::lock_guard lock(camera_mutex_);
+    settings = camera_settings_;
+    camera_settings_new_ = false;
+  }
+  std::string error;
+  if (!source_.Apply(settings, &error)) spdlog::error("camera settings not all applied: {}", error);
 }
 
 bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
@@ -139,7 +152,7 @@ bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
     if (stop_) break;
     std::string error;
     if (source_.Open(&error)) {
-      if (options_.on_camera_open) options_.on_camera_open(source_);
+      ApplyCameraSettings();  // the latest ones: a reopened camera may have forgotten them
       spdlog::info("camera back after {:.1f} s ({} attempts): {}", MsSince(lost) / 1000.0, attempt,
                    source_.Describe());
       SetCameraHealth(DeviceHealth::Ok());
@@ -159,7 +172,6 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
   if (!options_.camera_open) {
     std::string error;
     if (source_.Open(&error)) {
-      if (options_.on_camera_open) options_.on_camera_open(source_);
       SetCameraHealth(DeviceHealth::Ok());
     } else if (!Reconnect(error, true)) {
       slot_.Close();
@@ -167,12 +179,12 @@ void Pipeline::CaptureThread(PipelineStats* stats, const std::function<void()>& 
     }
   }
   while (!stop_) {
-    std::vector<std::function<void(FrameSource&)>> changes;
+    bool settings_new = false;
     {
       std::lock_guard lock(camera_mutex_);
-      std::swap(changes, camera_changes_);
+      settings_new = camera_settings_new_;
     }
-    for (const auto& change : changes) change(source_);
+    if (settings_new) ApplyCameraSettings();
     CapturedFrame frame;
     std::string error;
     if (!source_.Grab(&frame, &error)) {

@@ -62,8 +62,10 @@ struct PipelineOptions {
   // Why the camera / the servo driver did not open at start (the health's reason).
   std::string camera_error;
   std::string servos_error;
-  // Runs on the capture thread after every successful (re)open of the camera (gain, exposure).
-  std::function<void(FrameSource&)> on_camera_open;
+  // The operator's camera settings: applied on the capture thread before the first Grab and
+  // after every reopen of the camera; SetCameraSettings replaces them. A setting the camera
+  // refuses is said in the log (FrameSource::Apply's line) and the flight goes on.
+  kapfix::v1::CameraSettings camera_settings;
   // Called on every control step and every reconnect wait: the service manager's watchdog.
   std::function<void()> on_alive;
   // Called on every change of the devices' health (the camera's from the capture thread, the
@@ -108,9 +110,10 @@ class Pipeline {
   PipelineStats Run();
   // From any thread: ends Run soon.
   void Stop() { stop_ = true; }
-  // From any thread: `change` runs on the capture thread before its next Grab, because camera
-  // drivers are not safe to call from two threads.
-  void RequestCameraChange(std::function<void(FrameSource&)> change);
+  // From any thread: the camera settings from now on (the whole message, not a change). The
+  // capture thread applies them before its next Grab, because camera drivers are not safe to
+  // call from two threads, and again after a reconnect.
+  void SetCameraSettings(const kapfix::v1::CameraSettings& settings);
   // From any thread: whether the camera and the servo driver are there now (also carried by
   // every step's TelemetryRecord).
   DevicesHealth health() const;
@@ -130,8 +133,12 @@ class Pipeline {
   PipelineOptions options_;
   LatestFrameSlot slot_;
   std::atomic<bool> stop_{false};
+  // Capture thread only: applies the latest camera settings.
+  void ApplyCameraSettings();
+
   std::mutex camera_mutex_;
-  std::vector<std::function<void(FrameSource&)>> camera_changes_;
+  kapfix::v1::CameraSettings camera_settings_;  // the latest, guarded by camera_mutex_
+  bool camera_settings_new_ = true;             // not applied yet; guarded by camera_mutex_
   std::mutex servo_mutex_;  // LimitedServoDriver is not thread-safe: control vs watchdog
   // Held while on_health runs, so that two threads' changes are reported in order and the
   // last report is the health as it is. Changes are rare (a device comes or goes).

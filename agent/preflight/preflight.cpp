@@ -71,13 +71,17 @@ PreflightCheck CheckCamera(const CameraConfig& camera) {
                   "check the cable and power, `--camera SPEC` to try another device, and the "
                   "user's groups (video, plugdev)");
   }
+  // The configured settings, as the agent applies them; one the camera refuses is said but
+  // does not fail the check (the agent flies with the camera's own, as it would then).
+  std::string refused;
+  if (!source->Apply(camera.settings, &refused)) refused = "; settings not all applied: " + refused;
   CapturedFrame frame;
   if (!source->Grab(&frame, &error)) {
     return Failed("camera", source->Describe() + " opened but gave no frame: " + error,
                   "check the camera's trigger mode and, for GigE, the network and MTU");
   }
   return Pass("camera", source->Describe() + ", one " + std::to_string(frame.image.cols) + "x" +
-                            std::to_string(frame.image.rows) + " frame");
+                            std::to_string(frame.image.rows) + " frame" + refused);
 }
 
 PreflightCheck CheckServos(const ServoConfig& servo) {

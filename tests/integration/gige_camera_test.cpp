@@ -16,12 +16,14 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "agent/capture/aravis_frame_source.hpp"
 #include "kapfix/v1/state.pb.h"
 #include "tests/integration/child_process.hpp"
 #include "tests/link/link_test_support.hpp"
@@ -195,6 +197,11 @@ TEST_F(GigECameraTest, PreflightReadsOneFrameOfTheConfiguredSize) {
   const std::string out = ReadFile(folder_ / "preflight.out");
   EXPECT_NE(out.find("PASS camera: aravis 127.0.0.1"), std::string::npos) << out;
   EXPECT_NE(out.find("one 640x480 frame"), std::string::npos) << out;
+  // The settings are tried too: the fake camera has no automatic exposure, the schema's default.
+  EXPECT_NE(out.find("settings not all applied: Aravis camera '127.0.0.1': auto_exposure = true: "
+                     "the camera has no ExposureAuto feature"),
+            std::string::npos)
+      << out;
   EXPECT_NE(out.find("PASS servos: maestro " + maestro_.path()), std::string::npos) << out;
 }
 
@@ -284,6 +291,37 @@ TEST_F(GigECameraTest, ACameraMissingAtStartIsReportedWaitingThenOkOverTheLink) 
   EXPECT_EQ(after.exit_code, 0) << after.err;
   EXPECT_NE(after.out.find("camera: ok\n"), std::string::npos) << after.out;
   EXPECT_EQ(agent_->Stop(SIGTERM), 0) << ReadFile(log());
+}
+
+// The camera settings message reaches a GigE Vision camera as GVCP register writes: the fake
+// camera draws its frames with a scale of 1 + gain + log10(exposure / 10 ms), so 1000 µs makes
+// them black. A few frames were filled before the change: counted, not timed.
+TEST_F(GigECameraTest, AnExposureInTheSettingsMessageReachesTheCamera) {
+  if (!agent::AravisFrameSource::Available()) GTEST_SKIP() << "built without Aravis";
+  StartCamera();
+  agent::AravisFrameSourceOptions options;
+  options.camera_id = "127.0.0.1";
+  agent::AravisFrameSource source(options);
+  std::string error;
+  const auto deadline = steady_clock::now() + seconds(60);  // the camera process starting
+  bool open = source.Open(&error);
+  while (!open && steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    open = source.Open(&error);
+  }
+  ASSERT_TRUE(open) << error;
+  agent::CapturedFrame frame;
+  ASSERT_TRUE(source.Grab(&frame, &error)) << error;
+  ASSERT_GT(cv::mean(frame.image)[0], 50) << "the fake camera's frames at its default exposure";
+  kapfix::v1::CameraSettings settings;
+  settings.set_exposure_us(1000);
+  ASSERT_TRUE(source.Apply(settings, &error)) << error;
+  bool dark = false;
+  for (int i = 0; i < 16 && !dark; ++i) {
+    ASSERT_TRUE(source.Grab(&frame, &error)) << error;
+    dark = cv::mean(frame.image)[0] < 1;
+  }
+  EXPECT_TRUE(dark) << "no black frame in 16 after the exposure was set to 1000 µs";
 }
 
 // 0.1 % of the stream's packets lost: some frames are incomplete and skipped, the flight goes

@@ -81,17 +81,51 @@ TEST(FakeFrameSourceTest, FailOpenSimulatesAMissingCamera) {
   EXPECT_EQ(source.open_count(), 1);
 }
 
-TEST(FakeFrameSourceTest, RecordsGainAndExposure) {
+TEST(FakeFrameSourceTest, KeepsTheSettingsItIsGiven) {
   FakeFrameSource source(ThreeFrames());
-  ASSERT_TRUE(source.SetGain(6.5, nullptr));
-  ASSERT_TRUE(source.SetExposure(2000, nullptr));
-  EXPECT_EQ(source.gain_db(), 6.5);
-  EXPECT_EQ(source.exposure_us(), 2000);
+  kapfix::v1::CameraSettings settings;
+  settings.set_gain_db(6.5);
+  settings.set_exposure_us(2000);
+  std::string error;
+  ASSERT_TRUE(source.Apply(settings, &error)) << error;
+  EXPECT_EQ(source.applied().gain_db(), 6.5);
+  EXPECT_EQ(source.applied().exposure_us(), 2000);
 }
 
-TEST(FakeFrameSourceTest, RejectsNonPositiveExposure) {
+TEST(FakeFrameSourceTest, ALaterSettingReplacesTheEarlierAndKeepsTheRest) {
   FakeFrameSource source(ThreeFrames());
-  EXPECT_FALSE(source.SetExposure(0, nullptr));
+  kapfix::v1::CameraSettings first;
+  first.set_gain_db(6);
+  first.set_exposure_us(2000);
+  ASSERT_TRUE(source.Apply(first, nullptr));
+  kapfix::v1::CameraSettings second;
+  second.set_gain_db(12);
+  ASSERT_TRUE(source.Apply(second, nullptr));
+  EXPECT_EQ(source.applied().gain_db(), 12);
+  EXPECT_EQ(source.applied().exposure_us(), 2000);
+}
+
+TEST(FakeFrameSourceTest, RefusesAValueOutsideTheSchemaRange) {
+  FakeFrameSource source(ThreeFrames());
+  kapfix::v1::CameraSettings settings;
+  settings.set_exposure_us(0);
+  std::string error;
+  EXPECT_FALSE(source.Apply(settings, &error));
+  EXPECT_NE(error.find("exposure_us"), std::string::npos) << error;
+  EXPECT_FALSE(source.applied().has_exposure_us());
+}
+
+TEST(FakeFrameSourceTest, ASettingItLacksIsRefusedByNameAndTheOthersKept) {
+  FakeFrameSource source(ThreeFrames());
+  source.LackControl(kapfix::v1::CameraSettings::kAutoExposureFieldNumber);
+  kapfix::v1::CameraSettings settings;
+  settings.set_gain_db(3);
+  settings.set_auto_exposure(true);
+  std::string error;
+  EXPECT_FALSE(source.Apply(settings, &error));
+  EXPECT_EQ(error, "fake camera: auto_exposure = true: this camera has no such control");
+  EXPECT_EQ(source.applied().gain_db(), 3);
+  EXPECT_FALSE(source.applied().has_auto_exposure());
 }
 
 TEST(FakeFrameSourceTest, RejectsGreyFrames) {

@@ -55,9 +55,13 @@ TEST(V4l2FrameSourceTest, GrabWithoutOpenFailsWithAReason) {
   EXPECT_NE(error.find("not open"), std::string::npos) << error;
 }
 
-TEST(V4l2FrameSourceTest, SetGainWithoutOpenFails) {
+TEST(V4l2FrameSourceTest, SettingsWithoutOpenAreRefusedNamingTheCamera) {
   V4l2FrameSource source(V4l2FrameSourceOptions{});
-  EXPECT_FALSE(source.SetGain(3, nullptr));
+  kapfix::v1::CameraSettings settings;
+  settings.set_gain_db(3);
+  std::string error;
+  EXPECT_FALSE(source.Apply(settings, &error));
+  EXPECT_EQ(error, "V4L2 camera /dev/video0: not open");
 }
 
 TEST(V4l2FrameSourceTest, InvalidSizeIsRejectedBeforeTouchingTheDevice) {

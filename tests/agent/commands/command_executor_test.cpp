@@ -29,7 +29,10 @@ struct Rig {
   PhotoStore store;
   PhotoTaker photos{store, sink, [] { return std::string("default"); }};
   VideoDownlink video{sink, config.video};
-  CommandExecutor executor{CommandTargets{state, modes, photos, video, nullptr, true}};
+  std::vector<kapfix::v1::CameraSettings> camera;  // what reached the camera, in order
+  CommandExecutor executor{CommandTargets{
+      state, modes, photos, video,
+      [this](const kapfix::v1::CameraSettings& settings) { camera.push_back(settings); }, true}};
 };
 
 kapfix::v1::Command Gains(float p) {
@@ -63,6 +66,23 @@ TEST(CommandExecutorTest, OutOfRangeGainIsRefusedAndChangesNothing) {
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_OUT_OF_RANGE);
   EXPECT_NE(reply.reason().find("gains.p"), std::string::npos) << reply.reason();
   EXPECT_DOUBLE_EQ(rig.state.settings()->gains.p(), AgentConfig{}.gains.p());
+}
+
+// The camera gets the whole settings message held after the command, not only the change: a
+// camera that was reopened meanwhile gets everything back.
+TEST(CommandExecutorTest, SetCameraHandsTheCameraTheWholeSettingsMessage) {
+  TempDir temp;
+  Rig rig(temp.path());
+  kapfix::v1::Command exposure;
+  exposure.mutable_set_camera()->set_exposure_us(2000);
+  ASSERT_TRUE(rig.executor.Execute(exposure).ok());
+  kapfix::v1::Command gain;
+  gain.mutable_set_camera()->set_gain_db(6);
+  ASSERT_TRUE(rig.executor.Execute(gain).ok());
+  ASSERT_EQ(rig.camera.size(), 2u);
+  EXPECT_FLOAT_EQ(rig.camera.back().gain_db(), 6);
+  EXPECT_FLOAT_EQ(rig.camera.back().exposure_us(), 2000);
+  EXPECT_FALSE(rig.camera.back().has_auto_exposure()) << "a fixed exposure replaced it";
 }
 
 TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {

@@ -435,3 +435,78 @@ TEST(PipelineTest, WithoutReconnectionALostCameraEndsTheRunWithItsReason) {
 
 }  // namespace
 }  // namespace kapfix::agent
+
+namespace kapfix::agent {
+namespace {
+
+// The camera's gain as each frame was processed. Lock step: the capture thread waits while a
+// frame is processed, so the fake camera is read between its calls.
+struct GainPerFrame {
+  std::vector<float> gains;
+  void Watch(ScriptedProcessor* processor, const FakeFrameSource* source) {
+    processor->at_frame = [this, source](std::uint64_t) {
+      gains.push_back(source->applied().gain_db());
+    };
+  }
+};
+
+kapfix::v1::CameraSettings Gain(float db) {
+  kapfix::v1::CameraSettings settings;
+  settings.set_gain_db(db);
+  return settings;
+}
+
+TEST(PipelineTest, TheCameraSettingsAreAppliedBeforeTheFirstFrame) {
+  Rig rig;
+  ScriptedProcessor processor;
+  GainPerFrame seen;
+  seen.Watch(&processor, rig.source);
+  PipelineOptions options;
+  options.frames = 2;
+  options.lock_step = true;
+  options.camera_settings = Gain(6);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  pipeline.Run();
+  EXPECT_EQ(seen.gains, (std::vector<float>{6, 6}));
+}
+
+TEST(PipelineTest, ANewGainReachesTheCameraThroughTheSettingsMessage) {
+  Rig rig;
+  ScriptedProcessor processor;
+  GainPerFrame seen;
+  PipelineOptions options;
+  options.frames = 6;
+  options.lock_step = true;
+  options.camera_settings = Gain(6);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  processor.at_frame = [&](std::uint64_t frame) {
+    seen.gains.push_back(rig.source->applied().gain_db());
+    if (frame == 2) pipeline.SetCameraSettings(Gain(12));  // as a settings command does
+  };
+  pipeline.Run();
+  // Frame 3 was grabbed after the change: the capture thread applied it first.
+  EXPECT_EQ(seen.gains, (std::vector<float>{6, 6, 6, 12, 12, 12}));
+}
+
+TEST(PipelineTest, AReopenedCameraGetsTheLatestSettingsNotTheConfiguredOnes) {
+  Rig rig;
+  ScriptedProcessor processor;
+  GainPerFrame seen;
+  PipelineOptions options;
+  options.frames = 6;
+  options.lock_step = true;
+  options.retry_initial_ms = 1;
+  options.camera_settings = Gain(6);
+  Pipeline pipeline(*rig.source, *rig.servos, processor, {&rig.telemetry}, options);
+  processor.at_frame = [&](std::uint64_t frame) {
+    seen.gains.push_back(rig.source->applied().gain_db());
+    if (frame == 1) pipeline.SetCameraSettings(Gain(12));
+    if (frame == 3) rig.source->FailNextGrabs(1);  // lost; its Open forgets the settings
+  };
+  const PipelineStats stats = pipeline.Run();
+  EXPECT_EQ(stats.camera_reconnects, 1u);
+  EXPECT_EQ(seen.gains, (std::vector<float>{6, 6, 12, 12, 12, 12}));
+}
+
+}  // namespace
+}  // namespace kapfix::agent
