@@ -127,7 +127,10 @@ void Pipeline::ApplyCameraSettings() {
     camera_settings_new_ = false;
   }
   std::string error;
-  if (!source_.Apply(settings, &error)) spdlog::error("camera settings not all applied: {}", error);
+  // A refused setting leaves the camera's own value and the flight goes on: a warning.
+  if (!source_.Apply(settings, &error)) {
+    spdlog::warn("camera settings not all applied (the camera keeps its own value): {}", error);
+  }
 }
 
 bool Pipeline::Reconnect(const std::string& reason, bool at_start) {
