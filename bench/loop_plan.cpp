@@ -10,15 +10,15 @@
 namespace kapfix::bench {
 namespace {
 
-// [s] wall-clock cost of one simulated frame and of one flight's set-up (scene upscaling,
-// reference) at one flight per core, measured on the project's 2-core machine with
-// `kapfix-bench-loop --jobs 2` (session 8: 10 scenes × nominal/realistic × 3 controllers,
-// 500 frames, both starts). SSP's free-swing frames are cheaper than fixated ones (no
-// control, one search per slice pair); the realistic world's roll and blur cost more per
-// frame than the nominal one's, which the mean over both covers.
-constexpr double kSecondsPerFixatedFrame = 0.0020;
-constexpr double kSecondsPerSspFrame = 0.0020;
-constexpr double kSecondsPerFlight = 0.05;
+// [s] CPU time of one simulated frame and of one flight's set-up, measured on the project's
+// 2-core machine (session 8, `--jobs 2`, 2 scenes × the 12 worlds × 3 controllers, 1 seed,
+// nice under other load): 108 flights from the first frame took 95.5 s at 500 frames and
+// 10.0 s at 50 (1.76 ms per frame, 5 ms per flight); the same 108 with the 72 main flights
+// after SSP took 61 s more for their 72 × 300 free-swing frames (2.8 ms each: SSP scores every
+// slice). A job per core turns CPU time into wall-clock time; other load stretches it.
+constexpr double kSecondsPerFixatedFrame = 0.00176;
+constexpr double kSecondsPerSspFrame = 0.0028;
+constexpr double kSecondsPerFlight = 0.005;
 
 bool Known(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
