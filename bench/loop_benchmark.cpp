@@ -161,12 +161,18 @@ LoopReport FlyPlan(const LoopPlan& plan, const LoopCommandLine& c,
   Progress progress{0, plan.SweepCount() + plan.MainCount(), c.detail};
   const std::vector<LoopFlight> sweep = plan.SweepFlights();
   std::vector<double> sweep_rms;
-  for (const LoopRun& run : FlyAll(sweep, plan, scenes, c.jobs, trace_dir, &progress)) {
-    sweep_rms.push_back(run.figures.rms_error_px);
+  std::map<std::string, double> best_gain;
+  std::vector<LoopRun> runs;
+  try {
+    for (const LoopRun& run : FlyAll(sweep, plan, scenes, c.jobs, trace_dir, &progress)) {
+      sweep_rms.push_back(run.figures.rms_error_px);
+    }
+    best_gain = BestGains(plan, sweep, sweep_rms);
+    runs = FlyAll(plan.MainFlights(best_gain), plan, scenes, c.jobs, trace_dir, &progress);
+  } catch (...) {
+    std::fprintf(stderr, "\n");  // the error's line after the progress line, not on it
+    throw;
   }
-  std::map<std::string, double> best_gain = BestGains(plan, sweep, sweep_rms);
-  std::vector<LoopRun> runs =
-      FlyAll(plan.MainFlights(best_gain), plan, scenes, c.jobs, trace_dir, &progress);
   std::fprintf(stderr, "\n");
   return LoopReport(plan, std::move(best_gain), std::move(runs));
 }
