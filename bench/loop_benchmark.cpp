@@ -154,6 +154,21 @@ std::vector<LoopRun> FlyAll(const std::vector<LoopFlight>& flights, const LoopPl
   return runs;
 }
 
+// Flies each world briefly (2 frames, after a 10-frame SSP when the plan has it) on this
+// thread, results dropped, before any worker starts: OpenCV fills some tables on first use
+// without a lock (cv::RNG's normal-distribution tables; helgrind saw two workers write them),
+// so they are filled here once.
+void WarmUp(const LoopPlan& plan, const cv::Mat& scene) {
+  for (const LoopWorld& world : plan.worlds) {
+    for (const std::string& start : plan.starts) {
+      ClosedLoopOptions options =
+          LoopFlight{"", 0, "predictive", start, 1.0, 1}.Options(world.options, 2);
+      options.ssp_frames = 10;  // ≥ 2 reach the camera: the worlds drop at most 2 %
+      EvaluateClosedLoop(scene, options);
+    }
+  }
+}
+
 // P's gain sweep per world, then every main flight with the world's best gain; the report.
 LoopReport FlyPlan(const LoopPlan& plan, const LoopCommandLine& c,
                    const std::map<std::string, cv::Mat>& scenes) {
@@ -201,7 +216,10 @@ int Main(int argc, char** argv) {
                plan.SweepCount() + plan.MainCount(),
                std::max(1.0, plan.EstimatedSeconds(c.jobs, Cores()) / 60.0), c.jobs);
   // The flights are the parallelism: OpenCV's own threads inside each would only fight them.
-  if (c.jobs > 1) cv::setNumThreads(1);
+  if (c.jobs > 1) {
+    cv::setNumThreads(1);
+    WarmUp(plan, scenes.at(plan.scenes.front()));
+  }
   std::filesystem::create_directories(c.out_dir);
   const LoopReport report = FlyPlan(plan, c, scenes);
   report.WriteCsv(c.out_dir + "/loop.csv");
