@@ -1,0 +1,90 @@
+#include "bench/loop_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+namespace kapfix::bench {
+namespace {
+
+// One line per frame of a flight: the true view error, the servos' true output angles, what
+// the loop believed them to be and what it commanded after the frame, and the measured
+// displacement against the true one (−view error) — to see where a world's error is made.
+void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
+  std::ofstream out(path);
+  out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
+         "commanded_tilt,measured_x,measured_y,lock_lost,off_target\n";
+  for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
+    out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
+        << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
+        << f.believed[k].tilt_deg << ',' << f.commanded[k].pan_deg << ',' << f.commanded[k].tilt_deg
+        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << ',' << (f.lock_lost[k] ? 1 : 0)
+        << ',' << (f.off_target[k] ? 1 : 0) << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+// [px] RMS of the view error over the second half of the frames (after the lock-on).
+double LateRms(const std::vector<cv::Point2d>& view_offsets) {
+  const std::size_t half = view_offsets.size() / 2;
+  double sum = 0;
+  for (std::size_t k = half; k < view_offsets.size(); ++k) {
+    sum += view_offsets[k].dot(view_offsets[k]);
+  }
+  return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, view_offsets.size() - half)));
+}
+
+void DropPerFrame(ClosedLoopFigures* f) {
+  f->view_offsets = {};
+  f->measured_x = {};
+  f->measured_y = {};
+  f->lock_lost = {};
+  f->off_target = {};
+  f->angles = {};
+  f->believed = {};
+  f->commanded = {};
+}
+
+}  // namespace
+
+std::string LoopRun::ProgressLine(std::size_t k, std::size_t total) const {
+  char line[256];
+  std::snprintf(line, sizeof line, "\r[%zu/%zu] %-9s %-16s %-10s %-11s %4.2f seed %d: %6.2f px   ",
+                k, total, world.c_str(), flight.scene.c_str(), flight.controller.c_str(),
+                flight.start.c_str(), flight.gain, flight.seed, figures.rms_error_px);
+  return line;
+}
+
+std::string LoopRun::DetailLine() const {
+  const ClosedLoopFigures& f = figures;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "late %6.2f | x %6.2f y %6.2f | miss %5.2f | forecast %5.1f%% lost %5.1f%% | "
+                "open %6.2f | deg/px ratio %5.3f σ %5.3f%s\n",
+                late_rms_error_px, f.rms_error_x_px, f.rms_error_y_px, f.measurement_rms_px,
+                f.predicting_pct, f.lock_lost_pct, f.open_loop_rms_px, f.deg_per_px_estimate_ratio,
+                f.deg_per_px_estimate_sigma, f.deg_per_px_estimate_trusted ? " trusted" : "");
+  return line;
+}
+
+std::string LoopRun::TraceFileName() const {
+  char gain_text[16];
+  std::snprintf(gain_text, sizeof gain_text, "%.2f", flight.gain);
+  return "trace_" + world + "_" + flight.scene + "_" + flight.controller + "_" + flight.start +
+         "_" + gain_text + "_" + std::to_string(flight.seed) + ".csv";
+}
+
+LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const LoopWorld& world, int frames,
+            const std::string& trace_dir) {
+  LoopRun run{flight, world.name,
+              EvaluateClosedLoop(scene_bgr, flight.Options(world.options, frames)), 0.0};
+  run.late_rms_error_px = LateRms(run.figures.view_offsets);
+  if (!trace_dir.empty()) WriteTrace(trace_dir + "/" + run.TraceFileName(), run.figures);
+  DropPerFrame(&run.figures);
+  return run;
+}
+
+}  // namespace kapfix::bench
