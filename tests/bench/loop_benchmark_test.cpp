@@ -76,13 +76,13 @@ TEST(LoopBenchmarkTest, DryRunPrintsThePlanAndFliesNothing) {
   const kapfix::testing::TempDir dir;
   const Outcome outcome = RunLoopBench(dir.path(), "--dry-run --seeds 3 --jobs 2 --out out");
   ASSERT_EQ(outcome.exit_code, 0) << Contents(dir.path() / "stderr.txt");
-  EXPECT_NE(outcome.out.find("12 worlds × 5 gains × 10 scenes (seed 1, first-frame) = 600"),
+  EXPECT_NE(outcome.out.find("12 worlds × 9 gains × 10 scenes (seed 1, first-frame) = 1080"),
             std::string::npos)
       << outcome.out;
   EXPECT_NE(outcome.out.find("12 worlds × 1 starts × 10 scenes × 3 seeds × 3 controllers = 1080"),
             std::string::npos)
       << outcome.out;
-  EXPECT_NE(outcome.out.find("1680 flights of 500 frames, about"), std::string::npos)
+  EXPECT_NE(outcome.out.find("2160 flights of 500 frames, about"), std::string::npos)
       << outcome.out;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out"));
 }
