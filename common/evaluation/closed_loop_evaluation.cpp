@@ -4,12 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
 #include "common/control/servo_belief_controller.hpp"
 #include "common/evaluation/free_swing_slice.hpp"
+#include "common/sim/scene_camera.hpp"
 
 namespace kapfix {
 namespace {
@@ -148,6 +150,11 @@ class ClosedLoopRun {
     held_ = platform_.ViewOffset();
     const SimulatedFrame reference = platform_.CaptureFrame();
     loop_->SetReference(reference.image);
+    reference_roll_rad_ = RollRad(reference.frame);
+    const cv::Rect patch = loop_->patch();
+    patch_centre_ =
+        cv::Point2d(patch.x + (patch.width - 1) / 2.0 - (reference.image.cols - 1) / 2.0,
+                    patch.y + (patch.height - 1) / 2.0 - (reference.image.rows - 1) / 2.0);
     const FixationLoop::Step step =
         loop_->Process(reference.image, belief_->Expose(reference.frame), options_.frame_period_s);
     Command(reference.frame, step.targets);
@@ -172,7 +179,7 @@ class ClosedLoopRun {
     lock_lost_ = step.lock_lost;
     off_target_ = step.off_target;
     honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
-    RecordMeasurement(step, offset);
+    RecordMeasurement(step, offset, frame.frame);
   }
 
   // The flight's figures from the accumulators; call once, after the last StepFrame.
@@ -185,6 +192,7 @@ class ClosedLoopRun {
     figures_.lock_lost_pct = 100.0 * lost_ / n;
     figures_.p95_error_px = Percentile(errors_, 95.0);
     figures_.measurement_rms_px = measured_ > 0 ? std::sqrt(sum_miss_ / measured_) : kNan;
+    figures_.slice_miss_rms_px = measured_ > 0 ? std::sqrt(sum_slice_miss_ / measured_) : kNan;
     figures_.confidence_loss = measured_ > 0 ? 1.0 - sum_confidence_ / measured_ : kNan;
     honesty_.Finish(n, &figures_);
     figures_.dropped_pct = 100.0 * dropped_ / n;
@@ -283,13 +291,34 @@ class ClosedLoopRun {
     honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
   }
 
-  // What the matcher measured against the truth `offset` [px], the lock, the forecast share
-  // and the loop's time.
-  void RecordMeasurement(const FixationLoop::Step& step, const cv::Point2d& offset) {
+  // [rad] the camera's roll at `frame`.
+  double RollRad(int frame) const {
+    return SceneRollDeg(platform_options_.camera, frame) * std::numbers::pi / 180.0;
+  }
+
+  // [px] What a perfect match of the fixated patch measures at `frame` whose view is `offset`
+  // from the reference's: the scene point under the patch centre u (from the frame centre)
+  // in the reference, C + L_ref + R(roll_ref)·u, seen in this frame at R(−roll)·(L_ref − L +
+  // R(roll_ref)·u) from the centre (SceneCamera's warp without its keystone), less u. −offset
+  // when there is no roll.
+  cv::Point2d SliceTruth(const cv::Point2d& offset, int frame) const {
+    const auto rotate = [](double a, const cv::Point2d& v) {
+      return cv::Point2d(std::cos(a) * v.x - std::sin(a) * v.y,
+                         std::sin(a) * v.x + std::cos(a) * v.y);
+    };
+    return rotate(-RollRad(frame), rotate(reference_roll_rad_, patch_centre_) - offset) -
+           patch_centre_;
+  }
+
+  // What the matcher measured against the truth `offset` [px] (and the slice's own truth at
+  // `frame`), the lock, the forecast share and the loop's time.
+  void RecordMeasurement(const FixationLoop::Step& step, const cv::Point2d& offset, int frame) {
     if (step.match.found) {
       // A perfect match measures −ViewOffset (the content moves against the view).
       const cv::Point2d miss = step.match.displacement + offset;
       sum_miss_ += miss.dot(miss);
+      const cv::Point2d slice_miss = step.match.displacement - SliceTruth(offset, frame);
+      sum_slice_miss_ += slice_miss.dot(slice_miss);
       sum_confidence_ += step.match.confidence;
       ++measured_;
     }
@@ -313,12 +342,15 @@ class ClosedLoopRun {
   std::unique_ptr<FixationLoop> loop_;
   ServoTargets last_sent_;
   int last_sent_frame_ = -1;
-  cv::Point2d held_;  // [px] the reference's view
+  cv::Point2d held_;               // [px] the reference's view
+  double reference_roll_rad_ = 0;  // [rad] the camera's roll in the reference frame
+  cv::Point2d patch_centre_;       // [px] the patch's centre from the frame's centre
 
   ClosedLoopFigures figures_;
   std::vector<double> loop_us_;  // [µs] per measured frame
   std::vector<double> errors_;   // [px] view error per frame
   double sum_x_ = 0, sum_y_ = 0, sum_open_ = 0, total_us_ = 0, sum_miss_ = 0, sum_confidence_ = 0;
+  double sum_slice_miss_ = 0;
   int measured_ = 0, lost_ = 0, predicting_ = 0, dropped_ = 0, missed_ = 0;
   bool lock_lost_ = false, off_target_ = false;
   LockHonesty honesty_;

@@ -89,6 +89,11 @@ struct ClosedLoopFigures {
   // [px] RMS of the measured displacement's miss (measured − true) over the frames with a
   // match: what image disturbances (roll, blur, exposure) cost the matcher.
   double measurement_rms_px = 0;
+  // [px] the same miss against the fixated slice's own true motion. The view error above is
+  // the frame centre's; roll turns the image about that centre, so a patch r px off it moves
+  // by about roll × r more (3° at 100 px: 5 px), which no pan/tilt match can tell from a
+  // shift. This is the matcher's own miss (keystone left out: < 0.1 px).
+  double slice_miss_rms_px = 0;
   // [1] 1 − the mean match confidence over the frames with a match: how much less sure of
   // itself the matcher is (motion blur smears without moving the minimum).
   double confidence_loss = 0;

@@ -91,6 +91,7 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
       SlicePatch(plane.size(), options_.slice_count, options_.slice, options_.patch_size);
   samples_ = SampleSet({patch}, options_.sampling);
   reference_.emplace(plane, samples_);
+  StoreExposure(plane);
   patch_ = patch;
   origin_ = options_.search.origin;
   follow_sum_ = {0, 0};
@@ -153,6 +154,10 @@ void FixationLoop::UpdateLock(bool stored, Step* step) {
   if (confident) origin_ = step->match.shift;
 }
 
+void FixationLoop::StoreExposure(const cv::Mat& plane) {
+  exposure_ = options_.compensate_exposure ? ExposureCompensation(plane) : ExposureCompensation();
+}
+
 cv::Point2d FixationLoop::OnSearchedAxes(cv::Point2d displacement) const {
   if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
   if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
@@ -165,6 +170,7 @@ cv::Point2d FixationLoop::FollowStep(const cv::Mat& plane, const cv::Point2d& fr
   const double keep = std::exp(-1.0 / options_.follow_decay_frames);
   follow_sum_ = follow_sum_ * keep + frame_step;
   reference_.emplace(plane, samples_);
+  StoreExposure(plane);
   origin_ = options_.search.origin;  // the next step is measured against this frame
   return follow_sum_;
 }
@@ -184,7 +190,8 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
     return finish();
   }
 
-  const cv::Mat plane = Plane(frame_bgr);
+  cv::Mat plane = Plane(frame_bgr);  // the loop's own copy: scaled where it lies
+  step.exposure_gain = exposure_.ApplyInPlace(&plane);
   const bool stored = options_.reference == FixationOptions::Reference::kStored;
   const SearchOptions search = SearchWindow(plane.size(), stored, &step);
   step.match = strategy_->Search(*reference_, plane, search);

@@ -8,6 +8,7 @@
 #include "common/control/controller.hpp"
 #include "common/control/lens_calibration.hpp"
 #include "common/image/color_channel.hpp"
+#include "common/matching/exposure_compensation.hpp"
 #include "common/matching/reference_patch.hpp"
 #include "common/sampling/sampling_pattern.hpp"
 #include "common/search/search_strategy.hpp"
@@ -56,6 +57,10 @@ struct FixationOptions {
   // Below the report's 10 px gross threshold by the matcher's miss (0.1-0.5 px RMS in the
   // simulated worlds) and a margin, so that a frame claimed on target is not 10.3 px off.
   double off_target_px = 8;
+  // Scale each frame to the stored reference's mean brightness before the search
+  // (ExposureCompensation): an auto-exposure step between the reference and the frame
+  // otherwise pulls the SSD minimum off the view while the match stays confident.
+  bool compensate_exposure = true;
   enum class Reference {
     kStored,    // fixate: every frame is compared with the reference stored by SetReference
     kPrevious,  // follow: each frame is compared with the previous one (a moving boat)
@@ -108,7 +113,8 @@ class FixationLoop {
     // The loop does not claim to hold the view: the lock is lost, this frame's match is not
     // trusted, or it measures the view farther than off_target_px (issue 9's honest lock).
     bool off_target = true;
-    double loop_us = 0;  // [µs] wall time of this Process call
+    double exposure_gain = 1;  // [1] the factor the frame was scaled by before the search
+    double loop_us = 0;        // [µs] wall time of this Process call
     // What the controller believes after this frame (online deg/px, forecast weight), for
     // telemetry and the flight report; none for a controller that does not learn in flight.
     std::optional<ControlEstimate> estimate;
@@ -131,6 +137,8 @@ class FixationLoop {
   // Counts clear and untrusted frames from `step`'s match, loses or regains the lock, and
   // sets `step`'s lock_lost and trusted.
   void UpdateLock(bool stored, Step* step);
+  // Brightness of the reference plane `plane` for the next frames' compensation.
+  void StoreExposure(const cv::Mat& plane);
   // [px] `displacement` with the axis that is not searched set to 0.
   cv::Point2d OnSearchedAxes(cv::Point2d displacement) const;
   // Follow (previous-frame reference): adds `frame_step` [px] to the leaky sum, makes
@@ -143,6 +151,7 @@ class FixationLoop {
   SampleSet samples_;
   cv::Rect patch_;
   std::optional<ReferencePatch> reference_;
+  ExposureCompensation exposure_;  // to the reference's brightness (off: gain 1)
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
   int untrusted_frames_ = 0;

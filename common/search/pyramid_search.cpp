@@ -372,6 +372,17 @@ cv::Point2d RefineSubpixel(cv::Point fine, const SearchWindow& window, const Sco
   return refined;
 }
 
+// Whether the full-resolution answer `fine` stayed within one coarse step of the coarse
+// level's `coarse` [px] along both axes. The confidence is the coarse level's (band-passed),
+// but the finer levels compare raw brightness and descend up to kMaxDescentSteps: where they
+// walk off the coarse answer (an exposure step of 1.6 × pulled them 10–12 px while the coarse
+// level stood on the view), the answer is neither level's for sure and must not be trusted
+// at the coarse level's confidence. The coarse step quantises the coarse answer by ± step / 2,
+// so the levels agree within 2 px on clean frames (at most 3 over 2,500 realistic-world frames).
+bool LevelsAgree(cv::Point fine, cv::Point coarse, int step) {
+  return std::abs(fine.x - coarse.x) <= step && std::abs(fine.y - coarse.y) <= step;
+}
+
 // The coarse-to-fine search (SPEC §2.3): the coarsest level's whole window jointly, a descent
 // per finer reduced level, one 3×3 window at full resolution, then the sub-pixel parabola.
 template <typename T, int kChannels = 1>
@@ -410,6 +421,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
         &coarse_scores, &settled);
     best = settled;
   }
+  const cv::Point coarse_best = best;
   result.evaluations += static_cast<int>(coarse_scores.size());
   result.pixels_compared += static_cast<std::int64_t>(coarse_scores.size()) * coarse.area();
 
@@ -437,7 +449,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   result.shift = fine;
   result.displacement = refined;
   result.distance = scored.at(fine);
-  result.confidence = confidence;
+  result.confidence = LevelsAgree(fine, coarse_best * step, step) ? confidence : 0.0;
   return result;
 }
 

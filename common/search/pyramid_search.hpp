@@ -19,7 +19,10 @@ namespace kapfix {
 // does the same with the sampled pixels only, then fits the sub-pixel parabola per searched
 // axis. Blur widens the error curve's basin (thesis §3.2.1.3): the coarse level does not lock
 // onto a repetitive texture's side valley as h23 does, and tolerates the small cross-axis
-// wobble that defeats an X-only search on fine texture.
+// wobble that defeats an X-only search on fine texture. The confidence is the coarse level's
+// (MatchConfidence of its window), and 0 when the full-resolution answer ended more than one
+// coarse step (2^levels px) from the coarse answer along an axis: the finer levels compare raw
+// brightness, and a brightness step pulls their descent off the view.
 //
 // Cost for R = 100, cross_range = 8, a 100×100 patch, X axis: 51 × 5 coarse shifts of 625
 // pixels, about 9 shifts of 2,500 at half resolution and about 9 of the sampled pixels at

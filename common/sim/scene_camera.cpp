@@ -113,15 +113,15 @@ double SceneCamera::BrightnessGain(int frame) const {
                    std::sin(2.0 * std::numbers::pi * frame / options_.brightness_period_frames);
 }
 
-double SceneCamera::RollDeg(int frame) const {
-  if (options_.roll_max_deg == 0.0) return 0.0;
+double SceneRollDeg(const SceneCameraOptions& options, int frame) {
+  if (options.roll_max_deg == 0.0) return 0.0;
   const double two_pi = 2.0 * std::numbers::pi;
-  const double a = two_pi * SimUniform(options_.seed, kRollStream, 0);
-  const double b = two_pi * SimUniform(options_.seed, kRollStream, 1);
+  const double a = two_pi * SimUniform(options.seed, kRollStream, 0);
+  const double b = two_pi * SimUniform(options.seed, kRollStream, 1);
   // Starts level, so the reference frame is not rolled; |roll| ≤ roll_max_deg.
   const double wave = 0.7 * (std::sin(two_pi * frame / kRollPeriodA + a) - std::sin(a)) +
                       0.3 * (std::sin(two_pi * frame / kRollPeriodB + b) - std::sin(b));
-  return std::clamp(0.5 * wave, -1.0, 1.0) * options_.roll_max_deg;
+  return std::clamp(0.5 * wave, -1.0, 1.0) * options.roll_max_deg;
 }
 
 double SceneCamera::ExposureGain(int frame) const {

@@ -30,6 +30,11 @@ struct SceneCameraOptions {
   bool IsValid(std::string* error) const;
 };
 
+// [deg] The roll of the image at `frame` for these options (0 unless roll_max_deg > 0): what
+// SceneCamera::RollDeg gives, for callers that need the truth without the camera's scene
+// (the closed-loop evaluation's slice truth).
+double SceneRollDeg(const SceneCameraOptions& options, int frame);
+
 // A camera looking at a large still scene (SPEC §3): each frame is a W×H window of the
 // scene centred at the scene centre plus the line of sight. Moving the line of sight by +d
 // moves the scene content by −d in the frame.
@@ -53,7 +58,7 @@ class SceneCamera {
   cv::Mat Capture(int frame, cv::Point2d line_of_sight, cv::Point2d motion_px = {0, 0}) const;
 
   // [deg] roll of the image at `frame` (0 unless roll_max_deg > 0).
-  double RollDeg(int frame) const;
+  double RollDeg(int frame) const { return SceneRollDeg(options_, frame); }
   // [1] auto-exposure gain step at `frame` (1 unless exposure_step_max > 0).
   double ExposureGain(int frame) const;
 

@@ -368,5 +368,38 @@ TEST(FixationLoopTest, CalibrationOnThePlatformGivesAPositiveGainThatHoldsTheVie
   EXPECT_LT(worst, 4.0);
 }
 
+// fruits.jpg seen through a 300×300 window moved by (dx, dy), its brightness times `gain`
+// (an auto-exposure step), as a BGR frame.
+cv::Mat FruitsFrame(int dx, int dy, double gain = 1.0) {
+  static const cv::Mat photo = testing::LoadOpenCvPhoto("fruits.jpg");
+  cv::Mat frame;
+  photo(cv::Rect(140 - dx, 60 - dy, 300, 300)).convertTo(frame, CV_8U, gain);
+  return frame;
+}
+
+// The realistic world's silent wrong lock after SSP (issue 9): the reference was stored at a
+// dim exposure and the frame is 1.6 × brighter; uncompensated, pyr's finer levels walked
+// 10–12 px off the view at a trusted confidence.
+TEST(FixationLoopTest, AnExposureStepSinceTheReferenceIsCompensatedBeforeTheSearch) {
+  FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
+  loop.SetReference(FruitsFrame(0, 0));
+  const FixationLoop::Step step = loop.Process(FruitsFrame(5, -3, 1.6), {}, 0.04);
+  EXPECT_NEAR(step.exposure_gain, 1 / 1.6, 0.05);
+  ASSERT_TRUE(step.trusted);
+  EXPECT_NEAR(step.match.displacement.x, 5, 0.5);
+  EXPECT_NEAR(step.match.displacement.y, -3, 0.5);
+}
+
+TEST(FixationLoopTest, WithoutCompensationAnExposureStepIsSaidOffTargetNotHeld) {
+  FixationOptions o = Options();
+  o.compensate_exposure = false;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  loop.SetReference(FruitsFrame(0, 0));
+  const FixationLoop::Step step = loop.Process(FruitsFrame(5, -3, 1.6), {}, 0.04);
+  EXPECT_EQ(step.exposure_gain, 1.0);
+  EXPECT_FALSE(step.trusted);
+  EXPECT_TRUE(step.off_target);
+}
+
 }  // namespace
 }  // namespace kapfix

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/image/color_channel.hpp"
 #include "common/search/exhaustive_search.hpp"
 #include "tests/support/test_images.hpp"
@@ -47,6 +49,32 @@ TEST(PyramidSearchTest, HoldsItsMinimumUnderABrightnessDrift) {
   const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
   const SearchResult r = PyramidSearch().Search(reference, AeroWindow(64, 0, 1.08), {});
   EXPECT_NEAR(r.displacement.x, 64, 1.0);
+}
+
+TEST(PyramidSearchTest, AnAnswerTheFinerLevelsWalkedOffTheCoarseOneIsNotTrusted) {
+  // fruits.jpg under an uncorrected exposure step of 1.6 ×: the band-passed coarse level
+  // stands on the view (4, −4) at a confidence of 0.26, but the raw-brightness descent of the
+  // finer levels walks to (16, −4). Such an answer must not pass the trust threshold (0.2).
+  static const cv::Mat plane =
+      ExtractChannel(testing::LoadOpenCvPhoto("fruits.jpg"), ColorChannel::kGreen);
+  const auto window = [](int dx, int dy) {
+    return plane(cv::Rect(140 - dx, 60 - dy, 300, 300)).clone();
+  };
+  const ReferencePatch reference(window(0, 0), CentralRandomTenth());
+  cv::Mat brighter;
+  window(5, -3).convertTo(brighter, CV_8U, 1.6);
+  SearchOptions options;
+  options.axis = SearchAxis::kBoth;
+  const SearchResult r = PyramidSearch().Search(reference, brighter, options);
+  ASSERT_TRUE(r.found);
+  ASSERT_GT(std::hypot(r.displacement.x - 5, r.displacement.y + 3), 4.0)
+      << "the walk this test is about did not happen";
+  EXPECT_EQ(r.confidence, 0.0);
+  // The same view at the reference's brightness is matched and trusted.
+  const SearchResult same = PyramidSearch().Search(reference, window(5, -3), options);
+  EXPECT_NEAR(same.displacement.x, 5, 0.5);
+  EXPECT_NEAR(same.displacement.y, -3, 0.5);
+  EXPECT_GT(same.confidence, 0.2);
 }
 
 TEST(PyramidSearchTest, BuildsTheReducedReferenceOncePerStoredReference) {
