@@ -16,6 +16,18 @@ constexpr std::size_t kViews = 6;     // views the extrapolation is fitted to
 constexpr double kMinSpreadPx = 1;    // [px] floor of the views' expected miss
 constexpr double kSpreadRate = 0.05;  // [1/frame] EMA rate of the squared miss
 constexpr double kSureShare = 0.9;    // a candidate this likely is taken as in effect
+// The calibration scales the views are scored under: 2^(k/12), k = −12…12 (×0.5…2, the
+// calibration-error flag's range, in steps of 6 %: a view reconstructed 3 % off keeps 3 % of
+// the servo's steps, well under the candidates' parting), the given calibration's 1 first.
+constexpr int kScaleSteps = 12;
+constexpr int kMinScaleFrames = 3;  // [frames] scored before another scale may be used
+// Another scale is used only once its views miss by less than this share of the one in use's
+// (squared px, EMA at kSpreadRate): a margin against flipping between neighbours. It is
+// small and kMinScaleFrames short because the lock-on decides the flight: a belief still on
+// the calibration ×1.3 over the first ~10 frames let the pull-in ring (40–80 px) and hand the
+// axis to P for 100 frames (measured: aero1 realistic seed 2, 13.9 px with 15 frames and a
+// 0.7 margin, 7.0 px with these).
+constexpr double kScaleMargin = 0.9;
 
 const ServoBeliefOptions& Validated(const ServoBeliefOptions& options) {
   std::string error;
@@ -60,7 +72,14 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
 ServoBelief::ServoBelief(ServoBeliefOptions options)
     : options_(Validated(options)),
       shares_(DelayShares(options_.max_delay_frames - options_.min_delay_frames)) {
-  for (int axis = 0; axis < 2; ++axis) FillCandidates(axis);
+  scales_.push_back(1.0);
+  for (int k = -kScaleSteps; k <= kScaleSteps; ++k) {
+    if (k != 0) scales_.push_back(std::exp2(static_cast<double>(k) / kScaleSteps));
+  }
+  for (int axis = 0; axis < 2; ++axis) {
+    axes_[static_cast<std::size_t>(axis)].scale_miss_sq.assign(scales_.size(), 0.0);
+    FillCandidates(axis);
+  }
 }
 
 void ServoBelief::Sent(std::int64_t frame, const ServoTargets& command) {
@@ -117,11 +136,12 @@ ServoTargets ServoBelief::Expose(std::int64_t frame) {
   return believed_;
 }
 
-double ServoBelief::Predict(const Axis& a) const {
+double ServoBelief::Predict(const Axis& a, double px_per_deg) const {
   // Where the swing should be now: a least-squares line (two or three views) or parabola
   // (four or more) through the recent views, frames counted from the exposed one.
+  const auto view = [px_per_deg](const View& v) { return v.deg * px_per_deg + v.displacement_px; };
   const std::size_t n = a.views.size();
-  if (n == 1) return a.views.front().u_px;
+  if (n == 1) return view(a.views.front());
   const int terms = n >= 4 ? 3 : 2;
   Eigen::MatrixXd design(static_cast<Eigen::Index>(n), terms);
   Eigen::VectorXd u(static_cast<Eigen::Index>(n));
@@ -131,26 +151,46 @@ double ServoBelief::Predict(const Axis& a) const {
     design(row, 0) = 1;
     design(row, 1) = t;
     if (terms == 3) design(row, 2) = t * t;
-    u(row) = a.views[k].u_px;
+    u(row) = view(a.views[k]);
   }
   const Eigen::VectorXd fit = design.colPivHouseholderQr().solve(u);
   return fit(0);
 }
 
+void ServoBelief::ScoreScales(Axis* a, double px_per_deg) {
+  // The newest view (last in a->views) against the extrapolation of the ones before it,
+  // under each scale.
+  if (a->views.size() < 3) return;
+  const View newest = a->views.back();
+  a->views.pop_back();
+  for (std::size_t h = 0; h < scales_.size(); ++h) {
+    const double theta = scales_[h] * px_per_deg;
+    const double miss = newest.deg * theta + newest.displacement_px - Predict(*a, theta);
+    a->scale_miss_sq[h] += kSpreadRate * (miss * miss - a->scale_miss_sq[h]);
+  }
+  a->views.push_back(newest);
+  if (++a->scored < kMinScaleFrames) return;
+  const auto best =
+      static_cast<std::size_t>(std::min_element(a->scale_miss_sq.begin(), a->scale_miss_sq.end()) -
+                               a->scale_miss_sq.begin());
+  if (a->scale_miss_sq[best] < kScaleMargin * a->scale_miss_sq[a->scale]) a->scale = best;
+}
+
 double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per_px) {
   Axis& a = axes_[static_cast<std::size_t>(axis)];
   if (!a.views.empty() && a.views.back().frame < exposed_ - kMaxViewGapFrames) a.views.clear();
+  const double px_per_deg = scales_[a.scale] / deg_per_px;
   double deg = Expected(axis);
   if (!a.views.empty() && a.candidates.size() > 1) {
     // The posterior mean over the candidates, each as likely as its view continues the
     // swing (Gaussian, with the spread the chosen views have missed by lately): a clear
     // choice where the candidates part, their mean where the frame cannot tell them apart.
-    const double predicted = Predict(a);
+    const double predicted = Predict(a, px_per_deg);
     const double spread_sq = std::max(kMinSpreadPx * kMinSpreadPx, a.miss_sq);
     double best = INFINITY, weight_sum = 0, weighted = 0, best_weight = 0;
     std::int64_t best_order = a.in_effect;
     for (const Candidate& c : a.candidates) {
-      const double miss = c.deg / deg_per_px + displacement_px - predicted;
+      const double miss = c.deg * px_per_deg + displacement_px - predicted;
       const double weight = c.prior * std::exp(-0.5 * miss * miss / spread_sq);
       weight_sum += weight;
       weighted += weight * c.deg;
@@ -174,7 +214,9 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
   } else if (a.candidates.size() == 1) {
     a.in_effect = a.candidates.front().order;
   }
-  a.views.push_back({exposed_, deg / deg_per_px + displacement_px});
+  a.views.push_back({exposed_, deg, displacement_px});
+  // Scored only where the latency jitters: with one candidate the scale changes nothing.
+  if (a.candidates.size() > 1) ScoreScales(&a, 1.0 / deg_per_px);
   while (a.views.size() > kViews) a.views.pop_front();
   return deg;
 }
@@ -192,6 +234,10 @@ ServoTargets ServoBelief::Resolve(const ControlInput& input, const LensCalibrati
 
 void ServoBelief::ForgetViews() {
   for (Axis& a : axes_) a.views.clear();
+}
+
+double ServoBelief::scale(int axis) const {
+  return scales_[axes_[static_cast<std::size_t>(axis)].scale];
 }
 
 std::vector<double> ServoBelief::Candidates(int axis) const {

@@ -13,9 +13,10 @@ namespace kapfix {
 // `current` its caller could give before the frame was measured (the belief's expectation,
 // ServoBelief::Expose). The caller tells the belief which frame is processed (Expose) and what
 // was sent (Sent); this class only sits where the measurement and the controller meet.
-// The belief reconstructs views with the stored calibration (SetCalibration), not with an
-// online estimate the wrapped controller may act on: the choice between candidates only
-// needs the views to be smooth, which a calibration a few tens of % off keeps them.
+// The belief is given the stored calibration (SetCalibration), not an online estimate the
+// wrapped controller may act on, and finds the scale of it that keeps its views smooth
+// itself (ServoBelief::scale): a calibration ×1.3 off roughened them enough to pick the wrong
+// command of two.
 class ServoBeliefController final : public Controller {
  public:
   // Throws std::invalid_argument for a null controller or belief, or a calibration that is
