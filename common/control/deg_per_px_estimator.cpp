@@ -19,6 +19,9 @@ constexpr double kPlayRidge = 1e-6;
 // servo command overtaken under latency jitter) or a false match.
 constexpr double kOutlierMads = 4.0;
 constexpr int kScreenPasses = 3;  // residuals → screen → refit on the kept rows
+// [px] the least measurement noise a matcher has (sub-pixel interpolation); the simulated one
+// misses by 0.07–0.2 px RMS.
+constexpr double kNoiseFloorPx = 0.05;
 
 // The vertex of a residual curve over the log θ grid (a parabola through the lowest point and
 // its neighbours) and σ of log θ from its curvature, σ² = 2·s²/RSS''; false when the minimum
@@ -31,7 +34,10 @@ bool Vertex(const std::vector<double>& rss, double step, int dof, double* offset
   const double curvature = (r0 - 2 * r1 + r2) / (step * step);  // d²RSS/d(log θ)²
   if (!(curvature > 0)) return false;
   *offset_steps = 0.5 * (r0 - r2) / (r0 - 2 * r1 + r2);
-  *sigma = std::sqrt(2.0 * (r1 / std::max(1, dof)) / curvature);
+  // s² per row, never below a matcher's noise floor: frames that a model fits exactly (no
+  // noise, a servo that only followed the swing) would otherwise make any θ certain.
+  const double s2 = std::max(r1 / std::max(1, dof), kNoiseFloorPx * kNoiseFloorPx);
+  *sigma = std::sqrt(2.0 * s2 / curvature);
   return true;
 }
 
@@ -138,14 +144,15 @@ void DegPerPxEstimator::AddRow() {
   for (const Sample& s : recent_) {
     if (!s.valid) return;
   }
+  const int offset_column = 2 * (p + 1);  // d_t…d_{t−p}, a_t…a_{t−p}, then 1, then s
   Eigen::VectorXd z = Eigen::VectorXd::Zero(RowSize());
   for (int i = 0; i <= p; ++i) {
     const Sample& s = recent_[recent_.size() - 1 - i];  // t − i
     z(i) = s.displacement_px;
     z(p + 1 + i) = s.angle_deg;
-    if (options_.backlash) z(2 * (p + 1) + 1 + i) = s.direction;
+    if (options_.backlash) z(offset_column + 1 + i) = s.direction;
   }
-  z(2 * (p + 1)) = 1.0;
+  z(offset_column) = 1.0;
   open_rows_.push_back(z);
 }
 
@@ -182,8 +189,9 @@ Eigen::MatrixXd DegPerPxEstimator::Transform(double theta) const {
     t(i, i) = 1.0;
     t(i, p + 1 + i) = theta;
   }
-  t(p + 1, 2 * (p + 1)) = 1.0;
-  for (int i = 0; i < q; ++i) t(p + 2 + i, 2 * (p + 1) + 1 + i) = 1.0;
+  const int offset_column = 2 * (p + 1);
+  t(p + 1, offset_column) = 1.0;
+  for (int i = 0; i < q; ++i) t(p + 2 + i, offset_column + 1 + i) = 1.0;
   return t;
 }
 
