@@ -113,6 +113,24 @@ TEST(DegPerPxEstimatorTest, AHeldViewAtTheSimulatedMatchersNoiseKeepsItTrustedAn
   EXPECT_TRUE(estimator.trusted()) << "σ " << estimator.relative_sigma();
 }
 
+TEST(DegPerPxEstimatorTest, NoiseFreeFramesDoNotMakeAWrongEstimateCertain) {
+  // Without noise the frames are fitted exactly by many θ: a residual of zero must not read
+  // as σ = 0 (a matcher always has some noise). Without the noise floor this loop's estimate
+  // was 2.4× off and trusted.
+  // A noise-free P loop (gain 1, the command acting two frames later) on a pure swing.
+  DegPerPxEstimator estimator(kTrueDegPerPx);
+  std::vector<double> angles(302, 0.0);
+  for (int t = 0; t < 300; ++t) {
+    const double swing = 100 * std::sin(2 * std::numbers::pi * t / 40.0);
+    const double d = swing - angles[t] / kTrueDegPerPx;
+    estimator.Add(angles[t], d);
+    angles[t + 2] = angles[t] + d * kTrueDegPerPx;
+    if (estimator.trusted()) {
+      EXPECT_NEAR(estimator.estimate_deg_per_px() / kTrueDegPerPx, 1.0, 0.01) << "frame " << t;
+    }
+  }
+}
+
 TEST(DegPerPxEstimatorTest, ALowExcitationStretchDoesNotMoveATrustedEstimate) {
   DegPerPxEstimator estimator(kTrueDegPerPx * 1.3);
   Fly(&estimator, 1.0, 500);
