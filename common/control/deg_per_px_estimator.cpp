@@ -22,6 +22,8 @@ constexpr int kScreenPasses = 3;  // residuals → screen → refit on the kept 
 // [px] the least measurement noise a matcher has (sub-pixel interpolation); the simulated one
 // misses by 0.07–0.2 px RMS.
 constexpr double kNoiseFloorPx = 0.05;
+// [1] a fit moves the estimate only while its σ is below this × max_relative_sigma.
+constexpr double kMoveSigmaFactor = 3.0;
 
 // The vertex of a residual curve over the log θ grid (a parabola through the lowest point and
 // its neighbours) and σ of log θ from its curvature, σ² = 2·s²/RSS''; false when the minimum
@@ -302,8 +304,11 @@ void DegPerPxEstimator::Fit() {
     relative_sigma_ = std::numeric_limits<double>::infinity();
     return;
   }
-  estimate_deg_per_px_ = 1.0 / (GridTheta(best) * std::exp(offset * GridStep()));
   relative_sigma_ = sigma;  // σ of log θ ≈ σ_θ/θ
+  // A fit this uncertain does not move the estimate, which telemetry and the flight report
+  // show whether trusted or not (a kite's small tilt swing once set it 39 % off at σ 23 %).
+  if (sigma > kMoveSigmaFactor * options_.max_relative_sigma) return;
+  estimate_deg_per_px_ = 1.0 / (GridTheta(best) * std::exp(offset * GridStep()));
 }
 
 bool DegPerPxEstimator::trusted() const {
