@@ -46,8 +46,7 @@ struct DegPerPxEstimatorOptions {
 // [px/deg] for which u_θ = displacement + θ·angle is best explained by a damped pendulum
 // around an offset, u_t = α1·u_{t−1} + α2·u_{t−2} + c (AR(2), least squares for each θ): the
 // residual sum of squares over the window is minimised over log θ (a grid, then a parabola
-// through the best three points). Measurement noise that the angle does not carry adds the
-// same to every θ's residual and does not bias the minimum.
+// through the best three points).
 //
 // The servo's play. The angle the loop knows is the one it commanded; a hobby servo's output
 // lags it by half its backlash in the direction it last moved. Once the loop holds the view,
@@ -59,11 +58,19 @@ struct DegPerPxEstimatorOptions {
 // Where the information is. The window is split into segments of segment_frames, each with
 // its own swing model (AR coefficients, offset, play), but one θ for all: the residual curves
 // of the segments are added and minimised together. A segment in which the servo only
-// followed the swing (a well-held view) has a flat curve and barely moves the minimum, so
-// the estimate stays where the lock-on's and the gusts' corrections put it instead of
-// drifting with the last low-contrast stretch.
+// followed the swing (a well-held view) pins θ down no better than segment_max_relative_sigma
+// and is left out: its curve carries only the slope its measurement noise gives the residual
+// (the swing is in the angle, scaled by θ, the noise is not), which over a long hold carried
+// the estimate off. So the estimate stays where the lock-on's and the gusts' corrections put
+// it. Rows whose residual is far beyond their segment's median are not fitted (a frame seen
+// through another command than the loop believes, a false match).
 //
-// Known limit (not finished): in closed loop the angle carries the noise of the frames it was
+// Known limit (not finished): the angle must be the one the frame was seen through. Under
+// latency jitter with a wrong calibration the loop's belief of it (ServoBelief) is wrong on
+// most lock-on frames, and so is the estimate (realistic world: 0.92–1.37, untrusted; with the
+// true angles within 1 %).
+//
+// Known limit: in closed loop the angle carries the noise of the frames it was
 // computed from, so a θ off the truth can cancel part of that noise; at the simulated
 // matcher's 0.1–0.2 px the estimate ends within 2 %, but a noisier matcher would bias it (an
 // instrumental-variable fit would remove that; a recursive IV ARX tried first needed far more
