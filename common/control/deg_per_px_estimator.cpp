@@ -11,6 +11,37 @@ namespace kapfix {
 namespace {
 
 constexpr int kGridPoints = 49;  // log-spaced θ candidates over the search span
+// [1] per row, on the play's columns: a segment in which the servo never reversed leaves them
+// equal to the offset's column, and the ridge picks one of the equivalent fits.
+constexpr double kPlayRidge = 1e-6;
+// [1] a row whose residual is beyond this many (normal-scaled) median absolute residuals of
+// its segment is not fitted: a frame seen through another angle than the loop believes (a
+// servo command overtaken under latency jitter) or a false match.
+constexpr double kOutlierMads = 4.0;
+constexpr int kScreenPasses = 3;  // residuals → screen → refit on the kept rows
+// [px] the least measurement noise a matcher has (sub-pixel interpolation); the simulated one
+// misses by 0.07–0.2 px RMS.
+constexpr double kNoiseFloorPx = 0.05;
+// [1] a fit moves the estimate only while its σ is below this × max_relative_sigma.
+constexpr double kMoveSigmaFactor = 3.0;
+
+// The vertex of a residual curve over the log θ grid (a parabola through the lowest point and
+// its neighbours) and σ of log θ from its curvature, σ² = 2·s²/RSS''; false when the minimum
+// is at the span's edge (not bracketed) or the curve is not convex there.
+bool Vertex(const std::vector<double>& rss, double step, int dof, double* offset_steps, int* best,
+            double* sigma) {
+  *best = static_cast<int>(std::min_element(rss.begin(), rss.end()) - rss.begin());
+  if (*best == 0 || *best == static_cast<int>(rss.size()) - 1) return false;
+  const double r0 = rss[*best - 1], r1 = rss[*best], r2 = rss[*best + 1];
+  const double curvature = (r0 - 2 * r1 + r2) / (step * step);  // d²RSS/d(log θ)²
+  if (!(curvature > 0)) return false;
+  *offset_steps = 0.5 * (r0 - r2) / (r0 - 2 * r1 + r2);
+  // s² per row, never below a matcher's noise floor: frames that a model fits exactly (no
+  // noise, a servo that only followed the swing) would otherwise make any θ certain.
+  const double s2 = std::max(r1 / std::max(1, dof), kNoiseFloorPx * kNoiseFloorPx);
+  *sigma = std::sqrt(2.0 * s2 / curvature);
+  return true;
+}
 
 }  // namespace
 
@@ -42,6 +73,14 @@ bool DegPerPxEstimatorOptions::IsValid(std::string* error) const {
     return fail("deg/px estimator ratio bound must be in (1, 100], got " +
                 std::to_string(max_ratio));
   }
+  if (segment_frames < 10 || segment_frames > window_frames) {
+    return fail("deg/px estimator segments must be 10…window frames, got " +
+                std::to_string(segment_frames));
+  }
+  if (!(segment_max_relative_sigma > 0 && segment_max_relative_sigma <= 10)) {
+    return fail("deg/px estimator segment sigma bound must be in (0, 10], got " +
+                std::to_string(segment_max_relative_sigma));
+  }
   return true;
 }
 
@@ -61,14 +100,21 @@ void DegPerPxEstimator::Restart(double start_deg_per_px) {
   start_deg_per_px_ = start_deg_per_px;
   estimate_deg_per_px_ = start_deg_per_px;
   relative_sigma_ = std::numeric_limits<double>::infinity();
-  window_.clear();
+  recent_.clear();
+  closed_.clear();
+  open_rows_.clear();
+  open_frames_ = 0;
+  last_angle_deg_ = 0;
+  moved_ = false;
+  direction_ = 0;
   rows_ = 0;
   since_fit_ = 0;
 }
 
 void DegPerPxEstimator::AddMissing() {
-  window_.push_back({0, 0, false});
-  while (static_cast<int>(window_.size()) > options_.window_frames) window_.pop_front();
+  recent_.push_back({0, 0, false, direction_});
+  while (static_cast<int>(recent_.size()) > options_.order + 1) recent_.pop_front();
+  if (++open_frames_ >= options_.segment_frames) CloseSegment();
 }
 
 void DegPerPxEstimator::Add(double angle_deg, double displacement_px) {
@@ -76,80 +122,193 @@ void DegPerPxEstimator::Add(double angle_deg, double displacement_px) {
     AddMissing();
     return;
   }
-  window_.push_back({angle_deg, displacement_px, true});
-  while (static_cast<int>(window_.size()) > options_.window_frames) window_.pop_front();
+  if (moved_ && angle_deg != last_angle_deg_) direction_ = angle_deg > last_angle_deg_ ? 1 : -1;
+  last_angle_deg_ = angle_deg;
+  moved_ = true;
+  recent_.push_back({angle_deg, displacement_px, true, direction_});
+  while (static_cast<int>(recent_.size()) > options_.order + 1) recent_.pop_front();
+  AddRow();
+  if (++open_frames_ >= options_.segment_frames) CloseSegment();
   if (++since_fit_ >= options_.refit_every) {
     since_fit_ = 0;
     Fit();
   }
 }
 
-double DegPerPxEstimator::ResidualSumOfSquares(double theta, int* rows) const {
-  // Normal equations of u_t = α1·u_{t−1} + … + αp·u_{t−p} + c over rows whose p + 1 frames
-  // are all measured.
+int DegPerPxEstimator::RowSize() const {
   const int p = options_.order;
-  Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(p + 1, p + 1);
-  Eigen::VectorXd atb = Eigen::VectorXd::Zero(p + 1);
-  Eigen::VectorXd x(p + 1);
-  double btb = 0;
-  int n = 0;
-  const int size = static_cast<int>(window_.size());
-  for (int t = p; t < size; ++t) {
-    bool valid = true;
-    for (int i = 0; i <= p && valid; ++i) valid = window_[t - i].valid;
-    if (!valid) continue;
-    const double u0 = window_[t].displacement_px + theta * window_[t].angle_deg;
-    for (int i = 1; i <= p; ++i) {
-      x(i - 1) = window_[t - i].displacement_px + theta * window_[t - i].angle_deg;
-    }
-    x(p) = 1.0;
-    ata += x * x.transpose();
-    atb += x * u0;
-    btb += u0 * u0;
-    ++n;
+  return 2 * (p + 1) + 1 + (options_.backlash ? p + 1 : 0);
+}
+
+void DegPerPxEstimator::AddRow() {
+  const int p = options_.order;
+  if (static_cast<int>(recent_.size()) < p + 1) return;
+  for (const Sample& s : recent_) {
+    if (!s.valid) return;
   }
-  *rows = n;
-  if (n < 3 * (p + 1)) return std::numeric_limits<double>::quiet_NaN();
+  const int offset_column = 2 * (p + 1);  // d_t…d_{t−p}, a_t…a_{t−p}, then 1, then s
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(RowSize());
+  for (int i = 0; i <= p; ++i) {
+    const Sample& s = recent_[recent_.size() - 1 - i];  // t − i
+    z(i) = s.displacement_px;
+    z(p + 1 + i) = s.angle_deg;
+    if (options_.backlash) z(offset_column + 1 + i) = s.direction;
+  }
+  z(offset_column) = 1.0;
+  open_rows_.push_back(z);
+}
+
+void DegPerPxEstimator::CloseSegment() {
+  closed_.push_back(Screened(open_rows_, open_frames_));
+  open_rows_.clear();
+  open_frames_ = 0;
+  int frames = 0;
+  for (const Segment& s : closed_) frames += s.frames;
+  // Whole segments, the open one included, within the window.
+  while (frames > options_.window_frames - options_.segment_frames && !closed_.empty()) {
+    frames -= closed_.front().frames;
+    closed_.pop_front();
+  }
+}
+
+double DegPerPxEstimator::GridTheta(int i) const {
+  // Log-spaced over [1/max_ratio, max_ratio] × the start, with the start's sign.
+  const double start = 1.0 / start_deg_per_px_;  // [px/deg], signed
+  const double log_lo = std::log(std::abs(start) / options_.max_ratio);
+  return std::copysign(std::exp(log_lo + i * GridStep()), start);
+}
+
+double DegPerPxEstimator::GridStep() const {
+  return 2.0 * std::log(options_.max_ratio) / (kGridPoints - 1);
+}
+
+Eigen::MatrixXd DegPerPxEstimator::Transform(double theta) const {
+  // (u_t, u_{t−1}…u_{t−p}, 1, s_t…s_{t−p}) = T·z with u = d + θ·a.
+  const int p = options_.order;
+  const int q = options_.backlash ? p + 1 : 0;
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(p + 2 + q, RowSize());
+  for (int i = 0; i <= p; ++i) {
+    t(i, i) = 1.0;
+    t(i, p + 1 + i) = theta;
+  }
+  const int offset_column = 2 * (p + 1);
+  t(p + 1, offset_column) = 1.0;
+  for (int i = 0; i < q; ++i) t(p + 2 + i, offset_column + 1 + i) = 1.0;
+  return t;
+}
+
+double DegPerPxEstimator::SwingModel(const Segment& segment, double theta,
+                                     Eigen::VectorXd* coefficients) const {
+  // u_t = α1·u_{t−1} + … + αp·u_{t−p} + c + Σ γi·s_{t−i} by least squares; the Gram matrix
+  // of (u_t, u_{t−1}…u_{t−p}, 1, s_t…s_{t−p}) is T·sums·Tᵀ.
+  const int p = options_.order;
+  if (segment.rows < 3 * (p + 1)) return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd t = Transform(theta);
+  const Eigen::MatrixXd gram = t * segment.sums * t.transpose();
+  const int n = static_cast<int>(gram.rows());
+  Eigen::MatrixXd ata = gram.bottomRightCorner(n - 1, n - 1);
+  for (int i = p + 1; i < n - 1; ++i) ata(i, i) += kPlayRidge * segment.rows;
+  const Eigen::VectorXd atb = gram.col(0).tail(n - 1);
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(ata);
   if (ldlt.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
   const Eigen::VectorXd w = ldlt.solve(atb);
+  if (coefficients) *coefficients = w;
   // RSS = bᵀb − wᵀAᵀb for the least-squares w.
-  return std::max(0.0, btb - w.dot(atb));
+  return std::max(0.0, gram(0, 0) - w.dot(atb));
+}
+
+std::vector<double> DegPerPxEstimator::Curve(const Segment& segment) const {
+  std::vector<double> rss(kGridPoints);
+  for (int i = 0; i < kGridPoints; ++i) rss[i] = SwingModel(segment, GridTheta(i), nullptr);
+  return rss;
+}
+
+DegPerPxEstimator::Segment DegPerPxEstimator::Screened(const std::vector<Eigen::VectorXd>& rows,
+                                                       int frames) const {
+  const auto sum = [&](const std::vector<bool>& keep) {
+    Segment s{Eigen::MatrixXd::Zero(RowSize(), RowSize()), 0, frames};
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (!keep.empty() && !keep[k]) continue;
+      s.sums += rows[k] * rows[k].transpose();
+      ++s.rows;
+    }
+    return s;
+  };
+  // The residuals are taken at the trusted estimate, else at the segment's own best θ: at a
+  // θ far off, the rows where the servo stepped would look like outliers. Outliers pull the
+  // own θ and the swing model too, so the screen is repeated on what it kept.
+  std::vector<bool> keep;
+  for (int pass = 0; pass < kScreenPasses; ++pass) {
+    const Segment kept = sum(keep);
+    double theta = 1.0 / estimate_deg_per_px_;
+    if (!trusted()) {
+      double offset = 0, sigma = 0;
+      int best = 0;
+      if (Vertex(Curve(kept), GridStep(), kept.rows - 1, &offset, &best, &sigma)) {
+        theta = GridTheta(best) * std::exp(offset * GridStep());
+      }
+    }
+    Eigen::VectorXd w;
+    if (!std::isfinite(SwingModel(kept, theta, &w))) break;
+    const Eigen::MatrixXd t = Transform(theta);
+    std::vector<double> magnitude, inliers;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Eigen::VectorXd u = t * rows[k];
+      magnitude.push_back(std::abs(u(0) - w.dot(u.tail(u.size() - 1))));
+      if (keep.empty() || keep[k]) inliers.push_back(magnitude.back());
+    }
+    const auto middle = inliers.begin() + static_cast<std::ptrdiff_t>(inliers.size() / 2);
+    std::nth_element(inliers.begin(), middle, inliers.end());
+    const double limit = kOutlierMads * 1.4826 * *middle;
+    if (!(limit > 0)) break;
+    keep.assign(rows.size(), true);
+    for (std::size_t k = 0; k < rows.size(); ++k) keep[k] = magnitude[k] <= limit;
+  }
+  return sum(keep);
 }
 
 void DegPerPxEstimator::Fit() {
-  const double start = 1.0 / start_deg_per_px_;  // [px/deg], signed
-  const double sign = std::copysign(1.0, start);
-  const double log_lo = std::log(std::abs(start) / options_.max_ratio);
-  const double log_hi = std::log(std::abs(start) * options_.max_ratio);
-  const double step = (log_hi - log_lo) / (kGridPoints - 1);
-  std::vector<double> rss(kGridPoints);
-  int rows = 0;
-  int best = -1;
-  for (int i = 0; i < kGridPoints; ++i) {
-    rss[i] = ResidualSumOfSquares(sign * std::exp(log_lo + i * step), &rows);
-    if (!std::isfinite(rss[i])) return;
-    if (best < 0 || rss[i] < rss[best]) best = i;
+  const int per_segment = options_.order + 1 + (options_.backlash ? options_.order + 1 : 0);
+  std::vector<Segment> open;
+  if (static_cast<int>(open_rows_.size()) >= 3 * (options_.order + 1)) {
+    open.push_back(Screened(open_rows_, open_frames_));
   }
+  // Each segment's own residual curve; a segment whose own curve pins θ down within
+  // segment_max_relative_sigma joins the sum. One that does not (the servo only followed the
+  // swing) carries no information on θ, only the slope that its measurement noise gives
+  // the residual — summed over a long hold, that slope would carry the estimate away.
+  std::vector<double> total(kGridPoints, 0.0);
+  int rows = 0, parameters = 1;  // θ
+  std::vector<const Segment*> segments;
+  for (const Segment& s : closed_) segments.push_back(&s);
+  for (const Segment& s : open) segments.push_back(&s);
+  for (const Segment* s : segments) {
+    if (s->rows < 3 * (options_.order + 1)) continue;
+    const std::vector<double> curve = Curve(*s);
+    double offset = 0, sigma = 0;
+    int best = 0;
+    if (!std::all_of(curve.begin(), curve.end(), [](double r) { return std::isfinite(r); }) ||
+        !Vertex(curve, GridStep(), s->rows - per_segment - 1, &offset, &best, &sigma) ||
+        sigma > options_.segment_max_relative_sigma) {
+      continue;
+    }
+    for (int i = 0; i < kGridPoints; ++i) total[i] += curve[i];
+    rows += s->rows;
+    parameters += per_segment;
+  }
+  if (rows == 0) return;
   rows_ = rows;
-  // A parabola through the best grid point and its neighbours, in log θ: its vertex is the
-  // estimate, its curvature the uncertainty. At the span's edge the minimum is not bracketed.
-  if (best == 0 || best == kGridPoints - 1) {
+  double offset = 0, sigma = 0;
+  int best = 0;
+  if (!Vertex(total, GridStep(), rows - parameters, &offset, &best, &sigma)) {
     relative_sigma_ = std::numeric_limits<double>::infinity();
     return;
   }
-  const double r0 = rss[best - 1], r1 = rss[best], r2 = rss[best + 1];
-  const double curvature = (r0 - 2 * r1 + r2) / (step * step);  // d²RSS/d(log θ)²
-  if (!(curvature > 0)) {
-    relative_sigma_ = std::numeric_limits<double>::infinity();
-    return;
-  }
-  const double offset = 0.5 * step * (r0 - r2) / (r0 - 2 * r1 + r2);
-  const double log_theta = log_lo + best * step + offset;
-  estimate_deg_per_px_ = sign / std::exp(log_theta);
-  // s² from the residual at the minimum (four unknowns: α1, α2, c, θ).
-  const double s2 = r1 / std::max(1, rows - options_.order - 2);
-  relative_sigma_ = std::sqrt(2.0 * s2 / curvature);  // σ of log θ ≈ σ_θ/θ
+  relative_sigma_ = sigma;  // σ of log θ ≈ σ_θ/θ
+  // A fit this uncertain does not move the estimate, which telemetry and the flight report
+  // show whether trusted or not (a kite's small tilt swing once set it 39 % off at σ 23 %).
+  if (sigma > kMoveSigmaFactor * options_.max_relative_sigma) return;
+  estimate_deg_per_px_ = 1.0 / (GridTheta(best) * std::exp(offset * GridStep()));
 }
 
 bool DegPerPxEstimator::trusted() const {
