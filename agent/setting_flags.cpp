@@ -30,11 +30,10 @@ SettingFlags::SettingFlags(CLI::App& app) {
 bool SettingFlags::Apply(AgentConfig* config, std::string* error) const {
   for (const Flag& flag : flags_) {
     if (flag.option->count() == 0) continue;
-    const std::string name = "--" + flag.key->entry.options->flag();
     std::string reason;
     const auto command = kapfix::link::MakeSetCommand(flag.key->name, flag.value, &reason);
     if (!command || !ApplySettingsCommand(*command, config, &reason)) {
-      if (error) *error = name + ": " + reason;
+      if (error) *error = "--" + flag.key->entry.options->flag() + ": " + reason;
       return false;
     }
   }
