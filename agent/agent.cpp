@@ -12,6 +12,7 @@
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/sim_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
+#include "agent/config/options_from_settings.hpp"
 #include "agent/resume/boot_id.hpp"
 #include "agent/resume/stored_settings.hpp"
 #include "agent/servo/maestro_servo_driver.hpp"
@@ -20,6 +21,7 @@
 #include "agent/still_camera/gphoto2_still_camera.hpp"
 #include "agent/still_camera/still_camera_trigger.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/curve_key_file.hpp"
 #include "link/link_endpoint.hpp"
@@ -57,7 +59,8 @@ SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
   // --blur smears each frame over the photo's exposure (issue 13), at most one frame period.
   if (config.simulation.world.blur) {
     o.camera.motion_blur_exposure =
-        std::min(1.0, config.photo.exposure_ms() / 1000.0 * config.camera.fps);
+        std::min(1.0, OptionsFromSettings<BestPhaseShutterOptions>(config.photo).exposure_s() *
+                          config.camera.fps);
   }
   if (default_gusts) o.kite.gusts = config.simulation.gusts;
   o.pan.min_deg = config.servo.pan.limits.min_deg;
@@ -350,8 +353,7 @@ void Agent::StartPhotos() {
   photos_ = std::make_unique<PhotoTaker>(*photo_store_, *publisher_, [this] {
     return state_->settings()->lens;  // photos are taken once the agent runs
   });
-  photos_->SetInterval(config_.photos.interval_s);
-  photos_->SetShutter(config_.photo);
+  photos_->SetSettings(config_.photo);
   // The still camera is opened at its first photo, so it costs nothing until selected.
   photos_->SetStillCamera(std::make_shared<StillCameraTrigger>(
       std::make_unique<Gphoto2StillCamera>(), options_.still_camera_delete));

@@ -7,7 +7,7 @@
 
 namespace kapfix::agent {
 
-AgentCommandLine::AgentCommandLine(CLI::App& app) {
+AgentCommandLine::AgentCommandLine(CLI::App& app) : setting_flags_(app) {
   AddRunFlags(app);
   AddLinkAndFolderFlags(app);
   AddDeviceFlags(app);
@@ -24,8 +24,6 @@ void AgentCommandLine::AddRunFlags(CLI::App& app) {
                  std::string("simulation: scene photo (default ") + kDefaultScene + ")");
   app.add_option("--motion", motion_, "simulation: platform motion")
       ->check(CLI::IsMember({"kite", "boat"}));
-  app.add_option("--controller", controller_, "controller (overrides the config)")
-      ->check(CLI::IsMember({"p", "pid", "predictive"}));
   auto* duration_opt =
       app.add_option("--duration", duration_s_, "seconds of flight at the camera's fps, then stop")
           ->check(CLI::PositiveNumber);
@@ -93,16 +91,6 @@ void AgentCommandLine::AddPhotoFlags(CLI::App& app) {
   app.add_flag("--still-camera-delete", still_camera_delete_,
                "delete each still-camera photo on the camera once stored on the agent (default: "
                "the camera's card keeps it too)");
-  app.add_option("--photo-interval", photo_interval_s_,
-                 "seconds between automatic photos, 0 = off (overrides photos.interval_s)");
-  app.add_option("--shutter", shutter_, "when a photo is taken (overrides settings.photo.shutter)")
-      ->check(CLI::IsMember({"interval", "best-phase"}));
-  app.add_option("--shutter-window", shutter_window_s_,
-                 "best-phase wait for the quietest moment, 0 = one swing period [s] (overrides "
-                 "settings.photo.window_s)");
-  app.add_option("--photo-exposure", photo_exposure_ms_,
-                 "photo exposure the shutter plans for and --blur smears over [ms] (overrides "
-                 "settings.photo.exposure_ms)");
 }
 
 bool AgentCommandLine::BuildWorld(WorldOptions* world, std::string* error) const {
@@ -151,6 +139,7 @@ bool AgentCommandLine::BuildConfig(AgentConfig* config, std::string* error) cons
   }
   config->simulation.world = world;
   ApplyOverrides(config);
+  if (!setting_flags_.Apply(config, error)) return false;
   if (!camera_spec_.empty() && !ApplyCameraSpec(camera_spec_, &config->camera, error)) {
     return false;
   }
@@ -158,10 +147,6 @@ bool AgentCommandLine::BuildConfig(AgentConfig* config, std::string* error) cons
 }
 
 void AgentCommandLine::ApplyOverrides(AgentConfig* config) const {
-  if (!controller_.empty()) {
-    config->gains.set_controller(static_cast<kapfix::v1::ControllerKind>(
-        kapfix::v1::ValueOfWord(*kapfix::v1::ControllerKind_descriptor(), controller_)->number()));
-  }
   if (seed_) config->simulation.seed = *seed_;
   if (!scene_.empty()) config->simulation.scene = scene_;
   if (config->simulation.scene.empty()) config->simulation.scene = kDefaultScene;
@@ -169,13 +154,6 @@ void AgentCommandLine::ApplyOverrides(AgentConfig* config) const {
   if (!stream_address_.empty()) config->link.stream_address = stream_address_;
   if (!photos_dir_.empty()) config->photos.dir = photos_dir_;
   if (!state_dir_.empty()) config->state_dir = state_dir_;
-  if (photo_interval_s_) config->photos.interval_s = *photo_interval_s_;
-  if (!shutter_.empty()) {
-    config->photo.set_shutter(static_cast<kapfix::v1::Shutter>(
-        kapfix::v1::ValueOfWord(*kapfix::v1::Shutter_descriptor(), shutter_)->number()));
-  }
-  if (shutter_window_s_) config->photo.set_window_s(static_cast<float>(*shutter_window_s_));
-  if (photo_exposure_ms_) config->photo.set_exposure_ms(static_cast<float>(*photo_exposure_ms_));
 }
 
 AgentOptions AgentCommandLine::BuildOptions(const AgentConfig& config) const {

@@ -11,6 +11,7 @@
 #include "agent/agent.hpp"
 #include "agent/config/agent_config.hpp"
 #include "agent/preflight/preflight.hpp"
+#include "agent/setting_flags.hpp"
 
 namespace kapfix::agent {
 
@@ -44,14 +45,16 @@ class AgentCommandLine {
   void AddPhotoFlags(CLI::App& app);
   // The simulated world's preset and single flags over it; refused without --sim.
   bool BuildWorld(WorldOptions* world, std::string* error) const;
-  // The flags that override a config key, over `config`.
+  // The flags that override a config key and are no setting, over `config`.
   void ApplyOverrides(AgentConfig* config) const;
+
+  // The settings' flags (--controller, --shutter-window, …): made from the settings schema.
+  SettingFlags setting_flags_;
 
   std::string config_path_;
   bool force_sim_ = false;
   std::string scene_;
   std::string motion_;
-  std::string controller_;
   std::optional<double> duration_s_;
   std::optional<std::uint64_t> frames_;
   std::string report_dir_;
@@ -74,11 +77,9 @@ class AgentCommandLine {
   std::optional<double> period_drift_, roll_deg_, frame_drops_, calibration_error_;
   std::optional<int> latency_jitter_;
   bool sway_ = false, blur_ = false, exposure_steps_ = false;
-  // Photos (issue 13): which camera takes them, and when.
+  // Photos (issue 13): which camera takes them (when: the settings' flags).
   std::string photo_camera_;
   bool still_camera_delete_ = false;
-  std::optional<double> photo_interval_s_, shutter_window_s_, photo_exposure_ms_;
-  std::string shutter_;
 };
 
 }  // namespace kapfix::agent

@@ -36,7 +36,9 @@ std::string Words(const google::protobuf::EnumDescriptor& type) {
   return words;
 }
 
-std::string Help(const kapfix::v1::SettingEntry& entry) {
+}  // namespace
+
+std::string SettingHelp(const kapfix::v1::SettingEntry& entry) {
   const FieldDescriptor& field = *entry.field;
   const kapfix::v1::SettingOptions& o = *entry.options;
   switch (field.cpp_type()) {
@@ -51,8 +53,9 @@ std::string Help(const kapfix::v1::SettingEntry& entry) {
   }
 }
 
-// Writes `text` into `field` of `target`; false when it is not a value of the field's type.
-bool SetField(Message& target, const FieldDescriptor& field, std::string_view text) {
+bool SetSettingFromText(Message* target_message, const FieldDescriptor& field,
+                        std::string_view text) {
+  Message& target = *target_message;
   const auto& r = *target.GetReflection();
   switch (field.cpp_type()) {
     case FieldDescriptor::CPPTYPE_FLOAT: {
@@ -89,10 +92,12 @@ bool SetField(Message& target, const FieldDescriptor& field, std::string_view te
   }
 }
 
+namespace {
+
 bool Apply(const kapfix::v1::SettingEntry& entry, Command& command, std::string_view text) {
-  if (entry.field == entry.command_field) return SetField(command, *entry.field, text);
+  if (entry.field == entry.command_field) return SetSettingFromText(&command, *entry.field, text);
   Message* settings = command.GetReflection()->MutableMessage(&command, entry.command_field);
-  return SetField(*settings, *entry.field, text);
+  return SetSettingFromText(settings, *entry.field, text);
 }
 
 }  // namespace
@@ -101,7 +106,7 @@ const std::vector<SettingKey>& SettingKeys() {
   static const std::vector<SettingKey> keys = [] {
     std::vector<SettingKey> found;
     for (const kapfix::v1::SettingEntry& entry : kapfix::v1::SettingEntries()) {
-      found.push_back({entry.options->key(), Help(entry), entry});
+      found.push_back({entry.options->key(), SettingHelp(entry), entry});
     }
     return found;
   }();

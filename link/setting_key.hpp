@@ -35,4 +35,14 @@ std::optional<kapfix::v1::Command> MakeSetCommand(std::string_view key, std::str
 // One line per key, for --help.
 std::string SettingKeysHelp();
 
+// A setting's help as kapfix-ctl and the flags made from the schema show it: the words of an
+// enum, "on | off" or the range with the option's help ("how long … (0 = one swing period),
+// 0 (off) or [0.1, 30] s").
+std::string SettingHelp(const kapfix::v1::SettingEntry& entry);
+
+// Writes `text` into `field` of `target` (a number, on | off, a string, an enum's setting
+// word); false when it is not a value of the field's type. The range is not checked.
+bool SetSettingFromText(google::protobuf::Message* target,
+                        const google::protobuf::FieldDescriptor& field, std::string_view text);
+
 }  // namespace kapfix::link

@@ -63,11 +63,8 @@ kapfix::v1::Reply CommandExecutor::ApplySettings(const kapfix::v1::Command& comm
     case kapfix::v1::Command::kSetVideo:
       targets_.video.SetSettings(settings->video);
       break;
-    case kapfix::v1::Command::kSetPhotoIntervalS:
-      targets_.photos.SetInterval(settings->photos.interval_s);
-      break;
     case kapfix::v1::Command::kSetPhoto:
-      targets_.photos.SetShutter(settings->photo);
+      targets_.photos.SetSettings(settings->photo);
       break;
     default:
       targets_.modes.RequestSettings(settings);

@@ -82,7 +82,6 @@ void FillSettings(const AgentConfig& config, kapfix::v1::AgentState* state) {
 
   *state->mutable_lens() = SettingsFromOptions<kapfix::v1::LensProfile>(config.active_lens());
 
-  state->set_photo_interval_s(static_cast<float>(config.photos.interval_s));
   *state->mutable_photo() = config.photo;
   *state->mutable_video() = config.video;
   state->set_frame_width_px(static_cast<std::uint32_t>(config.camera.width));
@@ -108,9 +107,6 @@ bool ApplySettingsCommand(const kapfix::v1::Command& command, AgentConfig* confi
     case kapfix::v1::Command::kSetVideo:
       kapfix::v1::MergeSettings(command.set_video(), &updated.video);
       break;
-    case kapfix::v1::Command::kSetPhotoIntervalS:
-      updated.photos.interval_s = command.set_photo_interval_s();
-      break;
     case kapfix::v1::Command::kSetPhoto:
       kapfix::v1::MergeSettings(command.set_photo(), &updated.photo);
       break;
@@ -130,7 +126,6 @@ bool IsSettingsCommand(const kapfix::v1::Command& command) {
     case kapfix::v1::Command::kSetCamera:
     case kapfix::v1::Command::kSetLens:
     case kapfix::v1::Command::kSetVideo:
-    case kapfix::v1::Command::kSetPhotoIntervalS:
     case kapfix::v1::Command::kSetPhoto:
       return true;
     default:

@@ -74,14 +74,6 @@ void ReadServo(ConfigReader& r, ServoConfig* c) {
   });
 }
 
-void ReadLens(ConfigReader& r, LensProfile* c) {
-  r.Read("name", &c->name);
-  r.Read("deg_per_px_pan", &c->deg_per_px_pan);
-  r.Read("deg_per_px_tilt", &c->deg_per_px_tilt);
-  r.Read("focal_mm", &c->focal_mm);
-  r.Read("pixel_pitch_um", &c->pixel_pitch_um);
-}
-
 // The SSP swing's length; what is searched and how are operator settings ("settings").
 void ReadSearch(ConfigReader& r, SearchConfig* c) {
   r.Read("swing_frames", &c->swing_frames);
@@ -113,17 +105,6 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
     ReadServo(s, &c->servo);
     return s.ok();
   });
-  // A "lenses" array replaces the default profile rather than adding to it.
-  if (r.Has("lenses")) c->lenses.clear();
-  r.ReadObjectArray("lenses", [c](ConfigReader& s, std::size_t /*index*/) {
-    ReadLens(s, &c->lenses.emplace_back());
-    return s.ok();
-  });
-  // The first profile is fitted unless settings.lens names another.
-  if (!c->lenses.empty() && std::none_of(c->lenses.begin(), c->lenses.end(),
-                                         [c](const LensProfile& p) { return p.name == c->lens; })) {
-    c->lens = c->lenses.front().name;
-  }
   r.ReadObject("search", [c](ConfigReader& s) {
     ReadSearch(s, &c->search);
     return s.ok();
@@ -139,7 +120,9 @@ void ReadAgent(ConfigReader& r, AgentConfig* c) {
   r.Read("watchdog_ms", &c->watchdog_ms);
   r.Read("state_dir", &c->state_dir);
   r.Read("resume", &c->resume);
-  r.Skip("settings");  // the operator settings: agent/config_file reads them
+  // The operator settings and the lens profiles (settings messages): agent/config_file reads them.
+  r.Skip("settings");
+  r.Skip("lenses");
   r.Finish();
 }
 

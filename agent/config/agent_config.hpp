@@ -63,8 +63,8 @@ struct AgentConfig {
   void ApplyLensCalibration(const std::string& lens, const LensCalibration& calibration);
 };
 
-// Reads the file's parts that are not operator settings (devices, link, folders, lens
-// profiles; everything but its "settings" object, which agent/config_file reads) from the
+// Reads the file's parts that are not operator settings (devices, link, folders; everything
+// but its "settings" object and its "lenses", which agent/config_file reads) from the
 // file's root object into `config`: keys not given keep their values; unknown keys and wrong
 // types are errors naming the field ("camera.fps: …"). Does not check IsValid.
 bool ReadAgentDevices(const nlohmann::json& json, AgentConfig* config, std::string* error);

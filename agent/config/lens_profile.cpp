@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "agent/config/options_from_settings.hpp"
 #include "kapfix/v1/settings.pb.h"
 #include "kapfix/v1/settings_schema.hpp"
 
@@ -29,7 +30,8 @@ bool LensProfile::IsValid(std::string* error) const {
   const bool direct = deg_per_px_pan != 0 || deg_per_px_tilt != 0;
   const bool optical = focal_mm != 0 || pixel_pitch_um != 0;
   if (direct == optical) {
-    return fail("give either deg_per_px_pan and deg_per_px_tilt, or focal_mm and pixel_pitch_um");
+    return fail(
+        "give either deg_per_px_pan and deg_per_px_tilt, or focal_length_mm and pixel_pitch_um");
   }
   if (direct) {
     if (!Positive(std::abs(deg_per_px_pan)) || !Positive(std::abs(deg_per_px_tilt)) ||
@@ -38,12 +40,9 @@ bool LensProfile::IsValid(std::string* error) const {
     }
     return true;
   }
-  // The ranges are the schema's (kapfix.v1.LensProfile), shared with the command validator.
-  const auto& optics = *kapfix::v1::LensProfile::descriptor();
-  std::string reason = kapfix::v1::CheckSetting(optics, "focal_length_mm", focal_mm, "focal_mm");
-  if (reason.empty()) {
-    reason = kapfix::v1::CheckSetting(optics, "pixel_pitch_um", pixel_pitch_um, "pixel_pitch_um");
-  }
+  // The optics in the schema's ranges: the profile seen as its message (VisitFields).
+  const std::string reason =
+      kapfix::v1::CheckSettings(SettingsFromOptions<kapfix::v1::LensProfile>(*this), "");
   return reason.empty() || fail(reason);
 }
 

@@ -12,14 +12,14 @@ namespace kapfix::agent {
 // pitch times any binning or downscaling between sensor and frame.
 struct LensProfile {
   std::string name;
-  double deg_per_px_pan = 0;   // [deg/px] 0 = derive from focal_mm and pixel_pitch_um
+  double deg_per_px_pan = 0;   // [deg/px] 0 = derive from the focal length and pixel pitch
   double deg_per_px_tilt = 0;  // [deg/px]
   double focal_mm = 0;         // [mm]
   double pixel_pitch_um = 0;   // [µm] per frame pixel
 
   // A name, and exactly one of the two forms with finite values: deg/px non-zero with
   // |deg/px| ≤ 10 (negative: a servo mounted the other way, as a calibration can measure),
-  // or focal 0.5…500 mm and pitch 0.5…200 µm.
+  // or focal length and pitch in the schema's ranges (kapfix.v1.LensProfile).
   bool IsValid(std::string* error) const;
 
   // The one way a measured calibration enters a profile (at start-up from the calibration

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "agent/config_file/json_line.hpp"
+#include "agent/config_file/lens_profiles.hpp"
 #include "agent/config_file/settings_object.hpp"
 
 namespace kapfix::agent {
@@ -34,6 +35,7 @@ bool Parse(const std::string& json_text, AgentConfig* config, ConfigProblem* pro
   std::string reason;
   const bool ok =
       ReadAgentDevices(json, &parsed, &reason) &&
+      (!json.contains("lenses") || ReadLensProfiles(json.at("lenses"), &parsed, &reason)) &&
       (!json.contains("settings") || ApplySettingsObject(json.at("settings"), &parsed, &reason)) &&
       parsed.IsValid(&reason);
   if (!ok) {

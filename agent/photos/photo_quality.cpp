@@ -6,17 +6,16 @@
 
 namespace kapfix::agent {
 
-void FillShotQuality(const ShutterShot& shot, ShutterMode mode, double exposure_ms,
-                     kapfix::v1::PhotoMetadata* metadata) {
+void FillShotQuality(const ShutterShot& shot, kapfix::v1::PhotoMetadata* metadata) {
   metadata->set_residual_offset_px(static_cast<float>(shot.offset_px));
   metadata->set_view_speed_px_per_frame(static_cast<float>(shot.speed_px_per_frame));
   metadata->set_view_blur_px(static_cast<float>(shot.blur_px));
   metadata->set_lock_lost(shot.lock_lost);
-  metadata->set_shutter(mode == ShutterMode::kBestPhase ? kapfix::v1::SHUTTER_BEST_PHASE
-                                                        : kapfix::v1::SHUTTER_INTERVAL);
+  metadata->set_shutter(shot.mode == ShutterMode::kBestPhase ? kapfix::v1::SHUTTER_BEST_PHASE
+                                                             : kapfix::v1::SHUTTER_INTERVAL);
   metadata->set_shutter_wait_s(static_cast<float>(shot.wait_s));
   metadata->set_shutter_reason(shot.reason);
-  metadata->set_exposure_ms(static_cast<float>(exposure_ms));
+  metadata->set_exposure_ms(static_cast<float>(shot.exposure_ms));
   metadata->set_camera(kapfix::v1::PHOTO_CAMERA_AGENT);
 }
 

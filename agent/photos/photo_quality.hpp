@@ -9,8 +9,7 @@ namespace kapfix::agent {
 
 // The shutter's part of a photo's quality (PhotoMetadata 13–19, 22, 23): offset, speed, blur
 // and lock at capture, the mode, the wait and why, the exposure; the agent's camera took it.
-void FillShotQuality(const ShutterShot& shot, ShutterMode mode, double exposure_ms,
-                     kapfix::v1::PhotoMetadata* metadata);
+void FillShotQuality(const ShutterShot& shot, kapfix::v1::PhotoMetadata* metadata);
 
 // Sharpness of the photo (PhotoMetadata 20, 21): the variance of the Laplacian over the
 // region where the reference patch is seen (`patch` in the reference frame, moved by the

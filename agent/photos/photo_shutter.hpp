@@ -29,9 +29,6 @@ class PhotoShutter {
   // Every control step. The shot when the shutter fires on this frame.
   std::optional<ShutterShot> OnStep(const CapturedFrame& frame, const TelemetryRecord& record);
 
-  ShutterMode mode() const { return shutter_.options().mode; }
-  double exposure_ms() const { return shutter_.options().exposure_ms; }
-
  private:
   std::mutex mutex_;
   std::optional<kapfix::v1::PhotoSettings> pending_;  // guarded by mutex_

@@ -56,14 +56,11 @@ bool PhotoTaker::Request(const std::string& note, std::string* error, std::strin
   return true;
 }
 
-void PhotoTaker::SetInterval(double seconds) {
-  std::lock_guard lock(mutex_);
-  interval_s_ = seconds;
-}
-
-void PhotoTaker::SetShutter(const kapfix::v1::PhotoSettings& photo) {
+void PhotoTaker::SetSettings(const kapfix::v1::PhotoSettings& photo) {
   shutter_.Set(photo);
   cameras_.Select(photo.camera());
+  std::lock_guard lock(mutex_);
+  interval_s_ = photo.interval_s();  // [s] 0 = off
 }
 
 void PhotoTaker::Flush() {
@@ -135,7 +132,7 @@ void PhotoTaker::OnStep(const CapturedFrame& frame, const FrameOutcome& outcome,
   metadata.set_slice(static_cast<std::uint32_t>(record.slice));
   metadata.set_lens_profile(lens_ ? lens_() : std::string());
   metadata.set_confidence(static_cast<float>(record.confidence));
-  FillShotQuality(*shot, shutter_.mode(), shutter_.exposure_ms(), &metadata);
+  FillShotQuality(*shot, &metadata);
   const cv::Rect patch =
       PatchInFrame(outcome.patch, {record.displacement_x_px, record.displacement_y_px});
   // cv::Mat copies share one pixel buffer: one clone for all photos of this frame.

@@ -45,16 +45,15 @@ class PhotoTaker : public StepObserver {
   // Any thread. A photo of the next frame, stored under the name returned in `file_name`
   // (optional) with `note`; false (and why) when the store cannot take one now.
   bool Request(const std::string& note, std::string* error, std::string* file_name = nullptr);
-  void SetInterval(double seconds);  // [s] 0 = off
   // Any thread. Which camera takes the next photos (PhotoSettings.camera); a still camera
   // that cannot falls back to the agent's (PhotoCameras).
   void SetCamera(kapfix::v1::PhotoCamera camera) { cameras_.Select(camera); }
   void SetStillCamera(std::shared_ptr<PhotoTrigger> still) {
     cameras_.SetStillCamera(std::move(still));
   }
-  // Any thread: shutter, window, cap, exposure and camera from the next frame on (every
-  // field set, as AgentConfig::IsValid checks).
-  void SetShutter(const kapfix::v1::PhotoSettings& photo);
+  // Any thread: shutter, window, cap, exposure, camera and the interval of automatic photos
+  // from the next frame on (every field set, as AgentConfig::IsValid checks).
+  void SetSettings(const kapfix::v1::PhotoSettings& photo);
   // Any thread: waits until every photo the shutter fired is written (or failed).
   void Flush();
   // Any thread: the metadata of the photos saved since the start (the first 100,000),

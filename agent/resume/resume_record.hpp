@@ -12,7 +12,7 @@ namespace kapfix::agent {
 // What an agent restart resumes (issue 14): the operator's settings as the settings commands
 // that changed them, the mode and slice, and the reference the fixation held.
 struct ResumeRecord {
-  // set_gains, set_search, set_camera, set_lens, set_video, set_photo_interval_s, set_photo:
+  // set_gains, set_search, set_camera, set_lens, set_video, set_photo:
   // applied in this order over the configuration, each range-checked as a station's command.
   std::vector<kapfix::v1::Command> settings;
   AgentMode mode = AgentMode::kIdle;

@@ -14,10 +14,10 @@ namespace {
 using Case = kapfix::v1::Command::CommandCase;
 
 // The order settings are stored in and applied back (the lens profiles come after these).
-constexpr std::array<Case, 6> kSettingsOrder{
-    kapfix::v1::Command::kSetGains,          kapfix::v1::Command::kSetSearch,
-    kapfix::v1::Command::kSetCamera,         kapfix::v1::Command::kSetVideo,
-    kapfix::v1::Command::kSetPhotoIntervalS, kapfix::v1::Command::kSetPhoto};
+constexpr std::array<Case, 5> kSettingsOrder{
+    kapfix::v1::Command::kSetGains, kapfix::v1::Command::kSetSearch,
+    kapfix::v1::Command::kSetCamera, kapfix::v1::Command::kSetVideo,
+    kapfix::v1::Command::kSetPhoto};
 
 }  // namespace
 

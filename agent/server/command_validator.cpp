@@ -307,9 +307,6 @@ Reply CommandValidator::Validate(const Command& command,
                        " bytes long: at most " + Num(limits_.max_photo_note_bytes));
       }
       break;
-    case Command::kSetPhotoIntervalS:
-      check.Settings(command, "");
-      break;
     case Command::kRequestState:
       if (command.request_state().resend_photos_since_us() < 0) {
         check.Fail(kapfix::v1::ERROR_CODE_OUT_OF_RANGE,

@@ -75,7 +75,7 @@ void BestPhaseShutter::Request() {
 }
 
 double BestPhaseShutter::Cost(double speed_px_per_frame, double offset_px) const {
-  const double exposure_frames = options_.exposure_ms / 1000.0 / options_.frame_period_s;
+  const double exposure_frames = options_.exposure_s() / options_.frame_period_s;
   return speed_px_per_frame * exposure_frames +
          options_.offset_weight * std::max(0.0, offset_px - options_.on_target_px);
 }
@@ -123,8 +123,10 @@ ShutterShot BestPhaseShutter::Fire(const ShutterFrame& frame, std::string reason
     const cv::Point2d step = frame.offset_px - previous_->offset_px;
     shot.speed_px_per_frame = std::hypot(step.x, step.y);
   }
-  shot.blur_px = shot.speed_px_per_frame * options_.exposure_ms / 1000.0 / options_.frame_period_s;
+  shot.blur_px = shot.speed_px_per_frame * options_.exposure_s() / options_.frame_period_s;
   shot.lock_lost = !frame.trusted;
+  shot.mode = options_.mode;
+  shot.exposure_ms = options_.exposure_ms;
   open_ = false;
   return shot;
 }

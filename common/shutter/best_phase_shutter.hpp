@@ -41,6 +41,9 @@ struct BestPhaseShutterOptions {
   // scenarios; and the window not longer than the cap.
   bool IsValid(std::string* error) const;
 
+  // [s] the exposure; the simulated camera blurs its frames over it too.
+  double exposure_s() const { return exposure_ms / 1000.0; }
+
   // The operator-set fields by the names of their settings (kapfix.v1.PhotoSettings), listed
   // once so that the agent copies its settings in by name.
   template <typename Visitor>
@@ -61,6 +64,9 @@ struct ShutterShot {
                                   // the frame before (0 when that was not measured)
   double blur_px = 0;             // [px] view travel during the exposure at that speed
   bool lock_lost = false;         // the frame's match was not trusted
+  // What the shot was planned with (the photo's metadata carries them).
+  ShutterMode mode = ShutterMode::kInterval;
+  double exposure_ms = 0;  // [ms]
 };
 
 // The swing-phase shutter (issue 13). A request opens a window (window_s, or one swing

@@ -106,10 +106,11 @@ PhotosPanel::PhotosPanel(AgentClient& client, QWidget* parent)
   });
   connect(&client_, &AgentClient::photoChunkReceived, this, &PhotosPanel::receive);
   connect(&client_, &AgentClient::stateReceived, this, [this](const kapfix::v1::AgentState& state) {
-    interval_on_->setChecked(state.photo_interval_s() > 0);
-    if (state.photo_interval_s() > 0) {
+    const float interval_s = state.photo().interval_s();
+    interval_on_->setChecked(interval_s > 0);
+    if (interval_s > 0) {
       const QSignalBlocker blocker(interval_s_);
-      interval_s_->setValue(state.photo_interval_s());
+      interval_s_->setValue(interval_s);
     }
   });
 }
@@ -140,7 +141,7 @@ void PhotosPanel::capture() {
 void PhotosPanel::sendInterval() {
   kapfix::v1::Command command;
   const double seconds = interval_on_->isChecked() ? interval_s_->value() : 0.0;
-  command.set_set_photo_interval_s(static_cast<float>(seconds));
+  command.mutable_set_photo()->set_interval_s(static_cast<float>(seconds));
   client_.sendCommand(
       std::move(command), [self = QPointer(this), seconds](const CommandOutcome& outcome) {
         if (self.isNull()) return;

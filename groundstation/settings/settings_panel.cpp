@@ -41,7 +41,7 @@ QString GroupTitle(const FieldDescriptor& command_field) {
   if (name == "set_gains") return QStringLiteral("Controller");
   if (name == "set_search") return QStringLiteral("Search");
   if (name == "set_lens") return QStringLiteral("Lens");
-  if (name.starts_with("set_photo")) return QStringLiteral("Photos");  // and its interval
+  if (name == "set_photo") return QStringLiteral("Photos");
   return QStringLiteral("Camera and video");
 }
 

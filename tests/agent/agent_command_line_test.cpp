@@ -48,6 +48,46 @@ TEST(AgentCommandLineTest, FlagsOverrideTheConfigKeysTheyName) {
   EXPECT_EQ(parsed.line.report_dir(), "/tmp/r");
 }
 
+// The settings' flags are made from the schema (its `flag` option) and applied as the settings
+// command would be.
+TEST(AgentCommandLineTest, SettingFlagsSetTheirSettings) {
+  Parsed parsed("--sim --shutter-window 2 --photo-exposure 4 --photo-interval 3");
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(parsed.line.BuildConfig(&config, &error)) << error;
+  EXPECT_FLOAT_EQ(config.photo.window_s(), 2.0F);
+  EXPECT_FLOAT_EQ(config.photo.exposure_ms(), 4.0F);
+  EXPECT_FLOAT_EQ(config.photo.interval_s(), 3.0F);
+  EXPECT_EQ(config.photo.shutter(), kapfix::v1::SHUTTER_INTERVAL) << "left as it was";
+}
+
+TEST(AgentCommandLineTest, AnOutOfRangeSettingFlagGetsTheSchemasReasonNamingTheFlag) {
+  Parsed parsed("--sim --photo-exposure 5000");
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(parsed.line.BuildConfig(&config, &error));
+  EXPECT_EQ(error, "--photo-exposure: photo.exposure_ms = 5000: must be in [0.01, 2000] ms");
+}
+
+TEST(AgentCommandLineTest, AWordThatIsNoChoiceIsRefusedNamingTheFlag) {
+  Parsed parsed("--sim --controller fuzzy");
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(parsed.line.BuildConfig(&config, &error));
+  EXPECT_EQ(error.rfind("--controller: cannot read 'fuzzy'", 0), 0U) << error;
+  EXPECT_NE(error.find("p | pid | predictive"), std::string::npos) << error;
+}
+
+TEST(AgentCommandLineTest, SettingFlagsTakeTheirHelpFromTheSchema) {
+  Parsed parsed("--sim");
+  const std::string help = parsed.app.help();
+  EXPECT_NE(help.find("--shutter-window"), std::string::npos) << help;
+  EXPECT_NE(help.find("how long best-phase waits for the quietest moment"), std::string::npos)
+      << help;
+  EXPECT_NE(help.find("(overrides settings.photo.window_s)"), std::string::npos) << help;
+  EXPECT_NE(help.find("--photo-interval"), std::string::npos) << help;
+}
+
 TEST(AgentCommandLineTest, AWorldFlagWithoutSimIsRefusedNamingSim) {
   Parsed parsed("--gusts broadband");
   AgentConfig config;

@@ -323,7 +323,7 @@ void WriteValidCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence) {
   write("valid_take_photo", command);
 
   command = SampleCommand(++*sequence);
-  command.set_set_photo_interval_s(10.0F);
+  command.mutable_set_photo()->set_interval_s(10.0F);
   write("valid_set_photo_interval_s", command);
 
   command = SampleCommand(++*sequence);
@@ -421,7 +421,7 @@ void WriteRefusedValueCommandSeeds(CorpusFolder& folder, std::uint64_t* sequence
   write("bad_lens_name_path", command);
 
   command = SampleCommand(++*sequence);
-  command.set_set_photo_interval_s(0.1F);
+  command.mutable_set_photo()->set_interval_s(0.1F);
   write("bad_photo_interval_too_short", command);
 
   command = SampleCommand(++*sequence);

@@ -44,7 +44,7 @@ std::string WriteConfig() {
                     ("kapfix_station_link_loss_" + std::to_string(::getpid()) + ".json");
   std::ofstream(path) << R"({"search": {"swing_frames": 45},
                              "settings": {"search": {"axis": "AXIS_BOTH"}, "gains": {"p": 1.0},
-                                          "photo_interval_s": 1}})";
+                                          "photo": {"interval_s": 1}}})";
   return path.string();
 }
 

@@ -285,7 +285,7 @@ TEST(LinkLossTest, ReturningStationGetsTheLastSettings) {
   EXPECT_THAT(outage.resync.out, HasSubstr("mode: fixate\n"));
   EXPECT_THAT(outage.resync.out, HasSubstr("slice: " + std::to_string(outage.slice) + " of "));
   EXPECT_THAT(outage.resync.out, HasSubstr(" p=0.95 "));
-  EXPECT_THAT(outage.resync.out, HasSubstr("photo_interval_s: 3\n"));
+  EXPECT_THAT(outage.resync.out, HasSubstr(" interval_s=3\n"));
 }
 
 TEST(LinkLossTest, ReturningStationGetsTheLatestSspResult) {

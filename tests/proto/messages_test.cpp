@@ -181,10 +181,9 @@ INSTANTIATE_TEST_SUITE_P(EveryCase, CommandRoundTripTest, ::testing::ValuesIn(Co
                          ParamName);
 
 TEST(ProtoSchemaTest, CommandOneofCoversEverySettingAndMode) {
-  const std::set<std::string> expected = {
-      "set_mode",      "set_gains", "set_search", "select_slice",
-      "set_camera",    "set_lens",  "take_photo", "set_photo_interval_s",
-      "request_state", "set_video", "set_photo"};
+  const std::set<std::string> expected = {"set_mode",   "set_gains", "set_search", "select_slice",
+                                          "set_camera", "set_lens",  "take_photo", "request_state",
+                                          "set_video",  "set_photo"};
   const std::vector<std::string> cases = CommandCases();
   EXPECT_EQ(std::set<std::string>(cases.begin(), cases.end()), expected);
 }

@@ -32,7 +32,7 @@ TEST(SettingsSchemaTest, ARatioShowsNoUnit) {
 }
 
 TEST(SettingsSchemaTest, ZeroMeansOffIsPartOfTheRange) {
-  const SettingOptions& interval = Of(*Command::descriptor(), "set_photo_interval_s");
+  const SettingOptions& interval = Of(*PhotoSettings::descriptor(), "interval_s");
   EXPECT_EQ(RangeText(interval), "0 (off) or [0.5, 86400] s");
   EXPECT_TRUE(InRange(0, interval));
   EXPECT_FALSE(InRange(0.1, interval));

@@ -88,11 +88,10 @@ std::string StateText(const kapfix::v1::AgentState& state) {
   }
   out << "slice: " << state.slice() << " of " << search.slice_count() << "\n";
   // The settings, one line per settings message, every field as the schema names it.
-  for (const char* name : {"gains", "search", "camera", "lens", "video"}) {
+  for (const char* name : {"gains", "search", "camera", "lens", "video", "photo"}) {
     const auto* field = state.GetDescriptor()->FindFieldByName(name);
     out << SettingsLine(name, state.GetReflection()->GetMessage(state, field));
   }
-  out << "photo_interval_s: " << state.photo_interval_s() << "\n";
   if (state.has_last_slice_report()) {
     out << "last_ssp: recommended_slice=" << state.last_slice_report().recommended_slice()
         << " finished=" << (state.last_slice_report().finished() ? 1 : 0) << "\n";

@@ -88,8 +88,8 @@ Settings InitialSettings() {
 }
 
 // A setting as kapfix-ctl and the station list it: the command field that carries it
-// ("set_gains") and its field within that message (nullptr when the command field is the
-// setting itself, as set_photo_interval_s).
+// ("set_gains") and its field within that message (the command field itself when it is the
+// setting, a scalar command; none is, today).
 struct SettingEntry {
   const google::protobuf::FieldDescriptor* command_field;
   const google::protobuf::FieldDescriptor* field;  // the setting; == command_field if scalar

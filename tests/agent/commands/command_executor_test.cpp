@@ -89,9 +89,11 @@ TEST(CommandExecutorTest, SetPhotoIntervalIsStoredInTheSettings) {
   TempDir temp;
   Rig rig(temp.path());
   kapfix::v1::Command command;
-  command.set_set_photo_interval_s(5);
+  command.mutable_set_photo()->set_interval_s(5);
   EXPECT_TRUE(rig.executor.Execute(command).ok());
-  EXPECT_DOUBLE_EQ(rig.state.settings()->photos.interval_s, 5);
+  EXPECT_FLOAT_EQ(rig.state.settings()->photo.interval_s(), 5.0F);
+  EXPECT_EQ(rig.state.settings()->photo.shutter(), kapfix::v1::SHUTTER_INTERVAL)
+      << "the fields the command leaves keep their values";
 }
 
 // Issue 13: set_photo was "command not known"; now it is applied, shown in the state, and the

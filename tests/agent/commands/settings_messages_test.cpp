@@ -200,10 +200,10 @@ TEST(SettingsMessagesTest, AutomaticExposureSwitchedOffAloneKeepsIt) {
 TEST(SettingsMessagesTest, PhotoIntervalIsApplied) {
   AgentConfig config;
   kapfix::v1::Command command;
-  command.set_set_photo_interval_s(30);
+  command.mutable_set_photo()->set_interval_s(30);
   std::string error;
   ASSERT_TRUE(ApplySettingsCommand(command, &config, &error)) << error;
-  EXPECT_DOUBLE_EQ(config.photos.interval_s, 30);
+  EXPECT_FLOAT_EQ(config.photo.interval_s(), 30.0F);
 }
 
 TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
@@ -219,7 +219,7 @@ TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
   config.camera.settings.clear_auto_exposure();
   config.camera.width = 800;
   config.camera.height = 600;
-  config.photos.interval_s = 10;
+  config.photo.set_interval_s(10);
   config.video.set_fps(15);
   config.video.set_jpeg_quality(70);
   kapfix::v1::AgentState state;
@@ -234,7 +234,7 @@ TEST(SettingsMessagesTest, FillSettingsReflectsTheConfig) {
   EXPECT_FLOAT_EQ(state.camera().exposure_us(), 1500.0F);
   EXPECT_FALSE(state.camera().auto_exposure());
   EXPECT_EQ(state.lens().name(), "default");
-  EXPECT_FLOAT_EQ(state.photo_interval_s(), 10.0F);
+  EXPECT_FLOAT_EQ(state.photo().interval_s(), 10.0F);
   EXPECT_FLOAT_EQ(state.video().fps(), 15.0F);
   EXPECT_EQ(state.video().jpeg_quality(), 70u);
   EXPECT_EQ(state.frame_width_px(), 800u);

@@ -203,7 +203,7 @@ TEST_F(AgentConfigFileTest, LensMustNameAProfile) {
   // As a set_lens command: a name with no profile starts a new one, which needs its optics.
   EXPECT_EQ(error, dir_ +
                        "/agent.json: lenses[1]: lens '8mm': give either deg_per_px_pan and "
-                       "deg_per_px_tilt, or focal_mm and pixel_pitch_um");
+                       "deg_per_px_tilt, or focal_length_mm and pixel_pitch_um");
 }
 
 TEST_F(AgentConfigFileTest, EmptyLensListIsAnError) {

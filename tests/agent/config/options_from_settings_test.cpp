@@ -54,9 +54,10 @@ TEST(OptionsFromSettingsTest, EveryGainIsAControllerGainsField) {
 }
 
 TEST(OptionsFromSettingsTest, EveryPhotoSettingIsAShutterOptionsField) {
-  // `camera` picks which camera takes the photo (PhotoCameras), not how the shutter times it.
+  // `camera` picks which camera takes the photo (PhotoCameras), `interval_s` when the photo
+  // taker asks for one: neither is how the shutter times it.
   ExpectEverySettingHasACounterpart<BestPhaseShutterOptions>(
-      kapfix::v1::InitialSettings<kapfix::v1::PhotoSettings>(), {"camera"});
+      kapfix::v1::InitialSettings<kapfix::v1::PhotoSettings>(), {"camera", "interval_s"});
 }
 
 TEST(OptionsFromSettingsTest, EverySearchSettingIsASearchConfigField) {

@@ -99,7 +99,7 @@ TEST(AgentConfigSettingsTest, SettingsAreAppliedAsTheirCommands) {
       "search": {"axis": "AXIS_BOTH", "patch_size_px": 64},
       "camera": {"auto_exposure": true},
       "video": {"jpeg_quality": 50},
-      "photo_interval_s": 2}})",
+      "photo": {"interval_s": 2}}})",
                                &config, &error))
       << error;
   EXPECT_EQ(config.gains.controller(), kapfix::v1::CONTROLLER_KIND_PID);
@@ -109,14 +109,78 @@ TEST(AgentConfigSettingsTest, SettingsAreAppliedAsTheirCommands) {
   EXPECT_EQ(config.search.patch_px, 64);
   EXPECT_FALSE(config.camera.settings.has_exposure_us());
   EXPECT_EQ(config.video.jpeg_quality(), 50U);
-  EXPECT_DOUBLE_EQ(config.photos.interval_s, 2);
+  EXPECT_FLOAT_EQ(config.photo.interval_s(), 2.0F);
 }
 
 TEST(AgentConfigSettingsTest, ThePhotoIntervalHasTheCommandsRange) {
   AgentConfig config;
   std::string error;
-  EXPECT_FALSE(ParseAgentConfig("{\"settings\": {\"photo_interval_s\": 0.1}}", &config, &error));
-  EXPECT_EQ(error, "line 1: settings.photo_interval_s = 0.1: must be in 0 (off) or [0.5, 86400] s");
+  EXPECT_FALSE(
+      ParseAgentConfig(R"({"settings": {"photo": {"interval_s": 0.1}}})", &config, &error));
+  EXPECT_EQ(error, "line 1: settings.photo.interval_s = 0.1: must be in 0 (off) or [0.5, 86400] s");
+}
+
+TEST(AgentConfigSettingsTest, TheOlderPhotoIntervalKeyIsRefusedSayingWhereItWent) {
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(ParseAgentConfig(R"({"settings": {"photo_interval_s": 5}})", &config, &error));
+  EXPECT_NE(error.find("settings.photo_interval_s: unknown key"), std::string::npos) << error;
+  EXPECT_NE(error.find("the photo interval moved into photo"), std::string::npos) << error;
+}
+
+// The lens profiles are kapfix.v1.LensProfile in protobuf's JSON mapping (plus deg/px): the
+// settings' names and ranges, unknown keys refused with the line.
+TEST(AgentConfigSettingsTest, ALensProfileTakesTheSettingsFieldNames) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(ParseAgentConfig(
+      R"({"lenses": [{"name": "a", "focal_length_mm": 6, "pixel_pitch_um": 5}]})", &config, &error))
+      << error;
+  ASSERT_EQ(config.lenses.size(), 1U);
+  EXPECT_DOUBLE_EQ(config.lenses[0].focal_mm, 6);
+  EXPECT_DOUBLE_EQ(config.lenses[0].pixel_pitch_um, 5);
+}
+
+TEST(AgentConfigSettingsTest, TheOlderFocalKeyOfALensProfileIsStillRead) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(ParseAgentConfig(
+      R"({"lenses": [{"name": "a", "focal_mm": 3.5, "pixel_pitch_um": 5}]})", &config, &error))
+      << error;
+  ASSERT_EQ(config.lenses.size(), 1U);
+  EXPECT_DOUBLE_EQ(config.lenses[0].focal_mm, 3.5);
+}
+
+TEST(AgentConfigSettingsTest, ALensProfileDirectDegPerPxIsRead) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(ParseAgentConfig(
+      R"({"lenses": [{"name": "w", "deg_per_px_pan": 0.09, "deg_per_px_tilt": -0.08}]})", &config,
+      &error))
+      << error;
+  ASSERT_EQ(config.lenses.size(), 1U);
+  EXPECT_DOUBLE_EQ(config.lenses[0].deg_per_px_pan, 0.09);
+  EXPECT_DOUBLE_EQ(config.lenses[0].deg_per_px_tilt, -0.08);
+  EXPECT_EQ(config.lens, "w");
+}
+
+TEST(AgentConfigSettingsTest, ALensPitchOutOfRangeGetsTheSchemasReasonWithItsLine) {
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(ParseAgentConfig(
+      "{\n\"lenses\": [{\"name\": \"a\", \"focal_length_mm\": 6, \"pixel_pitch_um\": 300}]}",
+      &config, &error));
+  EXPECT_EQ(error, "line 2: lenses[0].pixel_pitch_um = 300: must be in [0.5, 200] µm");
+}
+
+TEST(AgentConfigSettingsTest, AnUnknownLensKeyIsRefusedNamingIt) {
+  AgentConfig config;
+  std::string error;
+  EXPECT_FALSE(ParseAgentConfig(
+      R"({"lenses": [{"name": "a", "focal_length_mm": 6, "pixel_pich_um": 5}]})", &config, &error));
+  EXPECT_NE(error.find("lenses[0].pixel_pich_um: unknown field of kapfix.v1.LensProfile"),
+            std::string::npos)
+      << error;
 }
 
 TEST(AgentConfigSettingsTest, TheFirstLensProfileIsFittedUnlessSettingsNameAnother) {

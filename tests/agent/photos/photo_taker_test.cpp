@@ -15,11 +15,19 @@
 #include <string>
 #include <vector>
 
+#include "kapfix/v1/settings_schema.hpp"
 #include "tests/agent/support/recording_stream_sink.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace kapfix::agent {
 namespace {
+
+// The agent's initial photo settings with an automatic photo every `seconds` (0 = off).
+kapfix::v1::PhotoSettings Every(float seconds) {
+  auto photo = kapfix::v1::InitialSettings<kapfix::v1::PhotoSettings>();
+  photo.set_interval_s(seconds);
+  return photo;
+}
 
 using kapfix::agent::testing::RecordingStreamSink;
 using kapfix::testing::TempDir;
@@ -120,7 +128,7 @@ TEST(PhotoTakerTest, IntervalPhotosKeepTheFreeSpaceReserve) {
     PhotoStore store(small);
     RecordingStreamSink sink;
     PhotoTaker taker(store, sink, nullptr);
-    taker.SetInterval(0.5);
+    taker.SetSettings(Every(0.5F));
     for (std::uint64_t i = 0; i < 30; ++i) Step(taker, i);  // 3 s of camera time
     taker.Flush();
     saved = taker.saved();
@@ -225,7 +233,7 @@ TEST(PhotoTakerTest, LostLockIsMarkedInTheSidecar) {
 
 TEST(PhotoTakerTest, IntervalTakesAPhotoEveryNSecondsOfCaptureTime) {
   Rig rig;
-  rig.taker.SetInterval(1.0);
+  rig.taker.SetSettings(Every(1.0F));
   for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);  // 0 … 3 s of camera time
   rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 3u);  // at 1, 2 and 3 s
@@ -234,8 +242,8 @@ TEST(PhotoTakerTest, IntervalTakesAPhotoEveryNSecondsOfCaptureTime) {
 
 TEST(PhotoTakerTest, IntervalZeroStopsThePeriodicPhotos) {
   Rig rig;
-  rig.taker.SetInterval(1.0);
-  rig.taker.SetInterval(0);
+  rig.taker.SetSettings(Every(1.0F));
+  rig.taker.SetSettings(Every(0));
   for (std::uint64_t i = 0; i <= 30; ++i) Step(rig.taker, i);
   rig.taker.Flush();
   EXPECT_EQ(rig.taker.saved(), 0u);

@@ -133,13 +133,13 @@ TEST(ResumeRecorderTest, WhatARunResumedFromIsKeptWhenOnlyASettingChanges) {
   CountingModeEvents next;
   ResumeRecorder recorder(store, next, start, "default");
   kapfix::v1::Command interval;
-  interval.set_set_photo_interval_s(3.0F);
+  interval.mutable_set_photo()->set_interval_s(3.0F);
   recorder.OnSettingsApplied(interval);
   recorder.Flush();
   const ResumeRecord record = Stored(dir);
   ASSERT_EQ(record.settings.size(), 2u);
   EXPECT_FLOAT_EQ(record.settings[0].set_gains().p(), 0.6F);
-  EXPECT_FLOAT_EQ(record.settings[1].set_photo_interval_s(), 3.0F);
+  EXPECT_FLOAT_EQ(record.settings[1].set_photo().interval_s(), 3.0F);
   EXPECT_EQ(record.mode, AgentMode::kFixate);
   EXPECT_EQ(record.slice, 2);
   EXPECT_EQ(cv::norm(record.reference_frame, start.reference_frame, cv::NORM_INF), 0.0);

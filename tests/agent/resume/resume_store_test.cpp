@@ -21,7 +21,7 @@ ResumeRecord FixatingRecord() {
   gains.mutable_set_gains()->set_p(0.6F);
   record.settings.push_back(gains);
   kapfix::v1::Command interval;
-  interval.set_set_photo_interval_s(4.0F);
+  interval.mutable_set_photo()->set_interval_s(4.0F);
   record.settings.push_back(interval);
   record.mode = AgentMode::kFixate;
   record.slice = 3;
@@ -47,7 +47,7 @@ TEST(ResumeStoreTest, ARecordComesBackAsItWasSaved) {
   ASSERT_EQ(loaded->settings.size(), 2u);
   EXPECT_FLOAT_EQ(loaded->settings[0].set_gains().p(), 0.6F);
   EXPECT_FALSE(loaded->settings[0].set_gains().has_i());  // only what the command carried
-  EXPECT_FLOAT_EQ(loaded->settings[1].set_photo_interval_s(), 4.0F);
+  EXPECT_FLOAT_EQ(loaded->settings[1].set_photo().interval_s(), 4.0F);
   EXPECT_EQ(loaded->mode, AgentMode::kFixate);
   EXPECT_EQ(loaded->slice, 3);
   EXPECT_DOUBLE_EQ(loaded->reference_at.pan_deg, 12.5);

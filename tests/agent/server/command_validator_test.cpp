@@ -263,20 +263,20 @@ TEST(CommandValidatorLensTest, AcceptsAProfileByItsOptics) {
 
 TEST(CommandValidatorPhotoTest, AcceptsIntervalZeroAsOff) {
   Command command;
-  command.set_set_photo_interval_s(0);
+  command.mutable_set_photo()->set_interval_s(0);
   EXPECT_TRUE(Check(command).ok());
 }
 
 TEST(CommandValidatorPhotoTest, RefusesANegativeInterval) {
   Command command;
-  command.set_set_photo_interval_s(-5);
-  ExpectOutOfRange(command, "set_photo_interval_s = -5", "0 (off)", "[0.5, 86400]");
+  command.mutable_set_photo()->set_interval_s(-5);
+  ExpectOutOfRange(command, "set_photo.interval_s = -5", "0 (off)", "[0.5, 86400]");
 }
 
 TEST(CommandValidatorPhotoTest, RefusesANaNInterval) {
   Command command;
-  command.set_set_photo_interval_s(kNaN);
-  ExpectOutOfRange(command, "set_photo_interval_s = nan");
+  command.mutable_set_photo()->set_interval_s(kNaN);
+  ExpectOutOfRange(command, "set_photo.interval_s = nan");
 }
 
 TEST(CommandValidatorPhotoTest, RefusesAnOverlongNote) {

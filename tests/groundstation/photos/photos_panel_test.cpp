@@ -210,12 +210,13 @@ TEST(PhotosPanel, IntervalSwitchSendsThePhotoInterval) {
   PhotosPanel panel(client);
   panel.intervalSeconds().setValue(5);
   panel.intervalSwitch().click();
-  const auto* command = client.lastCommand(kapfix::v1::Command::kSetPhotoIntervalS);
+  const auto* command = client.lastCommand(kapfix::v1::Command::kSetPhoto);
   ASSERT_NE(command, nullptr);
-  EXPECT_FLOAT_EQ(command->set_photo_interval_s(), 5.0F);
+  EXPECT_FLOAT_EQ(command->set_photo().interval_s(), 5.0F);
+  EXPECT_FALSE(command->set_photo().has_shutter()) << "only the interval changes";
   panel.intervalSwitch().click();
-  EXPECT_FLOAT_EQ(
-      client.lastCommand(kapfix::v1::Command::kSetPhotoIntervalS)->set_photo_interval_s(), 0.0F);
+  EXPECT_FLOAT_EQ(client.lastCommand(kapfix::v1::Command::kSetPhoto)->set_photo().interval_s(),
+                  0.0F);
 }
 
 TEST(PhotosPanel, FolderIsRememberedBetweenRuns) {

@@ -200,6 +200,45 @@ TEST_F(CtlTest, SspWaitFollowsTheReportsAndPrintsTheRecommendedSlice) {
   EXPECT_EQ(agent_.control.State().mode(), kapfix::v1::MODE_SSP);
 }
 
+// `ssp --frames` is made from SetMode.deadline_frames's schema option (its flag and help).
+TEST_F(CtlTest, SspFramesSendsTheDeadline) {
+  const auto outcome = Run("ssp --frames 150");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
+  const auto commands = agent_.control.commands();
+  ASSERT_FALSE(commands.empty());
+  EXPECT_EQ(commands.back().set_mode().deadline_frames(), 150U);
+}
+
+TEST_F(CtlTest, SspWithoutFramesLeavesTheAgentsDeadline) {
+  const auto outcome = Run("ssp");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
+  const auto commands = agent_.control.commands();
+  ASSERT_FALSE(commands.empty());
+  EXPECT_FALSE(commands.back().set_mode().has_deadline_frames());
+}
+
+TEST_F(CtlTest, SspFramesOutOfRangeExitsOneWithTheAgentsReason) {
+  const auto outcome = Run("ssp --frames 1");
+  EXPECT_EQ(outcome.exit_code, 1);
+  EXPECT_THAT(outcome.err,
+              HasSubstr("set_mode.deadline_frames = 1: must be in [2, 1e+05] frames"));
+}
+
+TEST_F(CtlTest, SspFramesThatIsNotANumberExitsTwo) {
+  const auto outcome = Run("ssp --frames many");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.err, HasSubstr("--frames: cannot read 'many'"));
+  EXPECT_TRUE(agent_.control.commands().empty());
+}
+
+TEST_F(CtlTest, SspHelpShowsTheDeadlinesHelpFromTheSchema) {
+  const auto outcome = RunRaw("ssp --help");
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_THAT(outcome.out, HasSubstr("--frames"));
+  EXPECT_THAT(outcome.out,
+              HasSubstr("deadline of PSS, SSP and free-swing recording, [2, 1e+05] frames"));
+}
+
 TEST_F(CtlTest, PhotoSaveWritesTheAgentsPhotoToTheFolder) {
   const auto outcome = Run("photo --save " + folder_.string());
   EXPECT_EQ(outcome.exit_code, 0) << outcome.err;

@@ -1,7 +1,11 @@
 // `kapfix-ctl ssp`: start the Slice Selection Process, optionally following it to its result.
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "kapfix/v1/settings_schema.hpp"
 #include "kapfix/v1/slices.pb.h"
+#include "link/setting_key.hpp"
 #include "link/topic_names.hpp"
 #include "tools/ctl/commands/command.hpp"
 #include "tools/ctl/commands/command_link.hpp"
@@ -13,15 +17,47 @@
 namespace kapfix::ctl {
 namespace {
 
+// An option of the subcommand made from a SetMode field whose schema option names a flag
+// (the deadline: --frames); absent, the agent's default holds.
+struct ModeFlag {
+  kapfix::v1::SettingEntry entry;
+  CLI::Option* option = nullptr;
+  std::string value;  // as typed; read when `option` was given
+};
+
 struct SspArguments {
   bool wait = false;
-  unsigned frames = 0;  // [frames] deadline; 0 = the agent's
+  std::vector<ModeFlag> flags;
 };
+
+// Every SetMode field with a flag (settings_schema: the option's `flag`).
+std::vector<ModeFlag> ModeFlags() {
+  std::vector<ModeFlag> flags;
+  const auto& set_mode = *kapfix::v1::Command::descriptor()->FindFieldByNumber(
+      kapfix::v1::Command::kSetModeFieldNumber);
+  const auto& type = *set_mode.message_type();
+  for (int i = 0; i < type.field_count(); ++i) {
+    const kapfix::v1::SettingOptions* options = kapfix::v1::SettingOf(*type.field(i));
+    if (options != nullptr && !options->flag().empty()) {
+      flags.push_back({{&set_mode, type.field(i), options}, nullptr, {}});
+    }
+  }
+  return flags;
+}
 
 int RunSsp(const LinkArguments& link, const SspArguments& arguments) {
   kapfix::v1::Command command;
   command.mutable_set_mode()->set_mode(kapfix::v1::MODE_SSP);
-  if (arguments.frames > 0) command.mutable_set_mode()->set_deadline_frames(arguments.frames);
+  for (const ModeFlag& flag : arguments.flags) {
+    if (flag.option->count() == 0) continue;
+    // Syntax only: the range is the agent's to check, so its reason reaches the operator.
+    if (!kapfix::link::SetSettingFromText(command.mutable_set_mode(), *flag.entry.field,
+                                          flag.value)) {
+      Error("--" + flag.entry.options->flag() + ": cannot read '" + flag.value +
+            "': " + kapfix::link::SettingHelp(flag.entry));
+      return kBadArguments;
+    }
+  }
   if (!arguments.wait) return RunSimple(link, std::move(command));
 
   Inbox<kapfix::v1::SliceReport> reports;  // before the client, whose handler fills it
@@ -54,8 +90,12 @@ void AddSspCommand(CLI::App& app, const LinkArguments& link, CommandRun* run) {
   auto* ssp = app.add_subcommand("ssp", "start the Slice Selection Process");
   ssp->add_flag("--wait", arguments->wait,
                 "follow its progress until it finishes and print the recommended slice");
-  ssp->add_option("--frames", arguments->frames, "deadline in frames (default: the agent's)")
-      ->check(CLI::PositiveNumber);
+  arguments->flags = ModeFlags();
+  for (ModeFlag& flag : arguments->flags) {
+    flag.option =
+        ssp->add_option("--" + flag.entry.options->flag(), flag.value,
+                        kapfix::link::SettingHelp(flag.entry) + " (default: the agent's)");
+  }
   ssp->callback(
       [&link, run, arguments] { *run = [&link, arguments] { return RunSsp(link, *arguments); }; });
 }
