@@ -11,7 +11,8 @@
 #   - a proto field declared NAME (`optional float NAME = 3`),
 #   - a protobuf accessor or a member: `.NAME`, `->NAME`, `set_NAME(`, `has_NAME(`, `clear_NAME(`,
 #     `mutable_NAME(` (a struct member named like the setting is a hand copy of it),
-#   - the name quoted: "NAME" (VisitFields, JSON keys of the config file, schema look-ups).
+#   - the name quoted: "NAME" (VisitFields, JSON keys of the config file, schema look-ups),
+#   - protoc's field-number constant (`kGainDbFieldNumber` for gain_db).
 # Comment lines do not count. A bare word (a parameter, a local, a member used inside its own struct) is not counted: for
 # names such as `fps`, `scale`, `p`, `mode` or `camera` it is almost always something else.
 # What the patterns still cannot tell apart (another message's field or another struct's member
@@ -45,11 +46,16 @@ UNCOUNTABLE='name mode camera fps scale channel p i d axis strategy sampling sub
 #   name|why
 # None is, today: every setting goes through the schema (issue 11).
 EXCEPTIONS='
+gain_db|a camera control: each backend that has it is one of its uses (Aravis, V4L2, sim), through the seam FrameSource::Apply(CameraSettings)
+exposure_us|a camera control: each backend that has it is one of its uses (Aravis, V4L2); the config merge also names it: a fixed exposure and automatic exposure exclude each other
+auto_exposure|a camera control: each backend that has it is one of its uses (Aravis, V4L2, sim); the config merge also names it: a fixed exposure and automatic exposure exclude each other
 '
 
 files_naming() {
   name=$1
-  pattern="\"$name\"|(\\.|->)$name\\b|\\b(set|has|clear|mutable)_$name\\(|^[[:space:]]*(optional[[:space:]]+|repeated[[:space:]]+)?[A-Za-z0-9_.]+[[:space:]]+$name[[:space:]]*="
+  # protoc's field-number constant names the field too: gain_db -> kGainDbFieldNumber.
+  camel=$(printf '%s' "$name" | sed -E 's/(^|_)([a-z0-9])/\U\2/g')
+  pattern="\"$name\"|(\\.|->)$name\\b|\\b(set|has|clear|mutable)_$name\\(|\\bk${camel}FieldNumber\\b|^[[:space:]]*(optional[[:space:]]+|repeated[[:space:]]+)?[A-Za-z0-9_.]+[[:space:]]+$name[[:space:]]*="
   # A comment line (// or #) that mentions the setting is no use of it.
   git ls-files -- '*.cpp' '*.hpp' '*.proto' '*.h' '*.cc' '*.py' ':!tests/**' ':!build/**' |
     xargs grep -HE -- "$pattern" | grep -vE '^[^:]+:[[:space:]]*(//|#)' | cut -d: -f1 | sort -u ||
