@@ -1,42 +1,24 @@
 // kapfix-bench-loop as a user runs it: the same output whatever --jobs, the plan without
 // flying, a one-line refusal. Needs Debian's opencv-doc photos (deploy/setup-debian.sh).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
+#include "tests/support/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-};
+using kapfix::testing::ProcessOutcome;
+using kapfix::testing::ReadFile;
+using kapfix::testing::RunProcess;
 
 // Runs the benchmark in `dir` (its --out is relative, so stdout names the same folder
 // whatever `dir`), stderr to dir/stderr.txt.
-Outcome RunLoopBench(const std::filesystem::path& dir, const std::string& args) {
-  const std::string command =
-      "cd '" + dir.string() + "' && " + KAPFIX_BENCH_LOOP + " " + args + " 2>stderr.txt";
-  Outcome outcome;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) outcome.out += buffer.data();
-  const int status = ::pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return outcome;
-}
-
-std::string Contents(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+ProcessOutcome RunLoopBench(const std::filesystem::path& dir, const std::string& args) {
+  return RunProcess("cd '" + dir.string() + "' && " + KAPFIX_BENCH_LOOP + " " + args,
+                    dir / "stderr.txt");
 }
 
 // 2 scenes × 2 worlds × both starts × predictive and P, 1 seed, 30 frames, with traces.
@@ -46,17 +28,18 @@ constexpr const char* kTinyMatrix =
 
 TEST(LoopBenchmarkTest, OutputIsTheSameByteForByteWhateverTheJobs) {
   const kapfix::testing::TempDir one, three;
-  const Outcome serial = RunLoopBench(one.path(), std::string(kTinyMatrix) + " --jobs 1");
-  const Outcome parallel = RunLoopBench(three.path(), std::string(kTinyMatrix) + " --jobs 3");
-  ASSERT_EQ(serial.exit_code, 0) << Contents(one.path() / "stderr.txt");
-  ASSERT_EQ(parallel.exit_code, 0) << Contents(three.path() / "stderr.txt");
+  const ProcessOutcome serial = RunLoopBench(one.path(), std::string(kTinyMatrix) + " --jobs 1");
+  const ProcessOutcome parallel =
+      RunLoopBench(three.path(), std::string(kTinyMatrix) + " --jobs 3");
+  ASSERT_EQ(serial.exit_code, 0) << ReadFile(one.path() / "stderr.txt");
+  ASSERT_EQ(parallel.exit_code, 0) << ReadFile(three.path() / "stderr.txt");
   EXPECT_EQ(serial.out, parallel.out);
   std::size_t files = 0, traces = 0;
   for (const auto& entry : std::filesystem::directory_iterator(one.path() / "out")) {
     const std::filesystem::path name = entry.path().filename();
-    const std::string bytes = Contents(entry.path());
+    const std::string bytes = ReadFile(entry.path());
     EXPECT_FALSE(bytes.empty()) << name;
-    EXPECT_TRUE(bytes == Contents(three.path() / "out" / name)) << name << " differs";
+    EXPECT_TRUE(bytes == ReadFile(three.path() / "out" / name)) << name << " differs";
     ++files;
     traces += name.string().rfind("trace_", 0) == 0 ? 1 : 0;
   }
@@ -69,13 +52,13 @@ TEST(LoopBenchmarkTest, OutputIsTheSameByteForByteWhateverTheJobs) {
                           std::filesystem::directory_iterator()),
             static_cast<std::ptrdiff_t>(files));
   // Progress names every flight as it finishes.
-  EXPECT_NE(Contents(three.path() / "stderr.txt").find("[22/22]"), std::string::npos);
+  EXPECT_NE(ReadFile(three.path() / "stderr.txt").find("[22/22]"), std::string::npos);
 }
 
 TEST(LoopBenchmarkTest, DryRunPrintsThePlanAndFliesNothing) {
   const kapfix::testing::TempDir dir;
-  const Outcome outcome = RunLoopBench(dir.path(), "--dry-run --seeds 3 --jobs 2 --out out");
-  ASSERT_EQ(outcome.exit_code, 0) << Contents(dir.path() / "stderr.txt");
+  const ProcessOutcome outcome = RunLoopBench(dir.path(), "--dry-run --seeds 3 --jobs 2 --out out");
+  ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
   EXPECT_NE(outcome.out.find("12 worlds × 9 gains × 10 scenes (seed 1, first-frame) = 1080"),
             std::string::npos)
       << outcome.out;
@@ -89,9 +72,9 @@ TEST(LoopBenchmarkTest, DryRunPrintsThePlanAndFliesNothing) {
 
 TEST(LoopBenchmarkTest, UnknownWorldIsRefusedInOneLineNamingTheKnownOnes) {
   const kapfix::testing::TempDir dir;
-  const Outcome outcome = RunLoopBench(dir.path(), "--worlds nominal windy --out out");
+  const ProcessOutcome outcome = RunLoopBench(dir.path(), "--worlds nominal windy --out out");
   EXPECT_EQ(outcome.exit_code, 2);
-  const std::string err = Contents(dir.path() / "stderr.txt");
+  const std::string err = ReadFile(dir.path() / "stderr.txt");
   EXPECT_NE(err.find("unknown world in --worlds (known: nominal broadband"), std::string::npos)
       << err;
   EXPECT_EQ(err.find('\n'), err.size() - 1) << err;

@@ -19,6 +19,7 @@
 #include "kapfix/v1/envelope_codec.hpp"
 #include "kapfix/v1/telemetry.pb.h"
 #include "tests/link/fake_agent_control.hpp"
+#include "tests/support/process.hpp"
 
 namespace kapfix::testing {
 
@@ -40,16 +41,6 @@ bool WaitFor(Predicate done) {
 // Telemetry of ~100 kB (padding in an unknown field keeps it valid): a few dozen fill the
 // TCP buffers, so small high-water marks make the publisher drop.
 kapfix::v1::Telemetry LargeTelemetry(std::uint64_t frame);
-
-// A command line run as a script runs it (popen): its exit code (-1 when it did not exit
-// normally), its stdout, and its stderr, which the command line redirects to `err_file`.
-struct ProcessOutcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-ProcessOutcome RunProcess(const std::string& command_line, const std::filesystem::path& err_file);
-std::string ReadFile(const std::filesystem::path& path);
 
 int PortOf(const std::string& endpoint);  // "tcp://127.0.0.1:41234" → 41234
 

@@ -1,42 +1,27 @@
 // kapfix-analyze as a script would use it: exit codes, one-line errors, JSON keys, files.
 // Needs Debian's opencv-doc photos (deploy/setup-debian.sh).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "tests/support/process.hpp"
+
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using kapfix::testing::ProcessOutcome;
+using kapfix::testing::RunProcess;
 
-Outcome RunAnalyze(const std::string& args) {
+ProcessOutcome RunAnalyze(const std::string& args) {
   const std::filesystem::path err_file =
       std::filesystem::temp_directory_path() / ("kapfix_analyze_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(KAPFIX_ANALYZE) + " " + args + " 2>" + err_file.string();
-  Outcome outcome;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return outcome;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) outcome.out += buffer.data();
-  const int status = ::pclose(pipe);
-  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (FILE* err = std::fopen(err_file.c_str(), "r")) {
-    while (std::fgets(buffer.data(), buffer.size(), err) != nullptr) outcome.err += buffer.data();
-    std::fclose(err);
-  }
+  ProcessOutcome outcome = RunProcess(std::string(KAPFIX_ANALYZE) + " " + args, err_file);
   std::filesystem::remove(err_file);
   return outcome;
 }
@@ -45,7 +30,7 @@ std::string Photo(const std::string& name) {
   return std::string(KAPFIX_OPENCV_DATA_DIR) + "/" + name;
 }
 
-nlohmann::json ParseJson(const Outcome& outcome) {
+nlohmann::json ParseJson(const ProcessOutcome& outcome) {
   EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
   return nlohmann::json::parse(outcome.out, nullptr, /*allow_exceptions=*/false);
 }
@@ -81,7 +66,7 @@ TEST(AnalyzeCliTest, SwingWithoutWobbleIsExactForTheExhaustiveSearch) {
 TEST(AnalyzeCliTest, SwingWritesCsvAndPlotsToTheOutputFolder) {
   const auto dir = std::filesystem::temp_directory_path() / "kapfix_analyze_swing_out";
   std::filesystem::remove_all(dir);
-  const Outcome outcome =
+  const ProcessOutcome outcome =
       RunAnalyze("swing --image " + Photo("aero3.jpg") + " --frames 40 --out " + dir.string());
   EXPECT_EQ(outcome.exit_code, 0) << outcome.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "swing.csv"));
@@ -91,7 +76,7 @@ TEST(AnalyzeCliTest, SwingWritesCsvAndPlotsToTheOutputFolder) {
 }
 
 TEST(AnalyzeCliTest, UnreadableImageExitsNonZeroWithOneLineNamingIt) {
-  const Outcome outcome = RunAnalyze("swing --image /nonexistent/scene.jpg --json");
+  const ProcessOutcome outcome = RunAnalyze("swing --image /nonexistent/scene.jpg --json");
   EXPECT_NE(outcome.exit_code, 0);
   EXPECT_TRUE(outcome.out.empty());
   EXPECT_NE(outcome.err.find("/nonexistent/scene.jpg"), std::string::npos) << outcome.err;
@@ -99,14 +84,14 @@ TEST(AnalyzeCliTest, UnreadableImageExitsNonZeroWithOneLineNamingIt) {
 }
 
 TEST(AnalyzeCliTest, UnknownStrategyExitsNonZeroNamingIt) {
-  const Outcome outcome =
+  const ProcessOutcome outcome =
       RunAnalyze("swing --image " + Photo("aero1.jpg") + " --strategy h99 --frames 10");
   EXPECT_NE(outcome.exit_code, 0);
   EXPECT_NE(outcome.err.find("h99"), std::string::npos) << outcome.err;
 }
 
 TEST(AnalyzeCliTest, BadArgumentsExitNonZeroWithOneLine) {
-  const Outcome outcome = RunAnalyze("swing --frames -3");
+  const ProcessOutcome outcome = RunAnalyze("swing --frames -3");
   EXPECT_EQ(outcome.exit_code, 2);
   EXPECT_EQ(std::count(outcome.err.begin(), outcome.err.end(), '\n'), 1) << outcome.err;
 }
@@ -219,7 +204,7 @@ TEST(AnalyzeCliTest, SspValidatePooledOverImagesGivesAPermutationPValue) {
 }
 
 TEST(AnalyzeCliTest, SspRefusesAPatchTooBigForTheFrameNamingTheSizes) {
-  const Outcome o = RunAnalyze("ssp --image " + Photo("aero1.jpg") + " --patch 400 --json");
+  const ProcessOutcome o = RunAnalyze("ssp --image " + Photo("aero1.jpg") + " --patch 400 --json");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("400"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find("300"), std::string::npos) << o.err;
@@ -286,20 +271,20 @@ TEST(AnalyzeCliTest, CompareOnFiveSeedsGivesPValuesAnIndependentFormulaAgrees) {
 }
 
 TEST(AnalyzeCliTest, CompareRefusesFewerThanFiveRuns) {
-  const Outcome o = RunAnalyze("compare --image " + Photo("aero3.jpg") + " --runs 3");
+  const ProcessOutcome o = RunAnalyze("compare --image " + Photo("aero3.jpg") + " --runs 3");
   EXPECT_EQ(o.exit_code, 2);
 }
 
 TEST(AnalyzeCliTest, LiteralRefusesPyrWithTheReason) {
-  const Outcome o =
+  const ProcessOutcome o =
       RunAnalyze("swing --image " + Photo("aero1.jpg") + " --strategy pyr --literal --frames 20");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("not the thesis"), std::string::npos) << o.err;
 }
 
 TEST(AnalyzeCliTest, LiteralRefusesBothAxes) {
-  const Outcome o = RunAnalyze("swing --image " + Photo("aero1.jpg") +
-                               " --strategy h23 --literal --axis both --frames 20");
+  const ProcessOutcome o = RunAnalyze("swing --image " + Photo("aero1.jpg") +
+                                      " --strategy h23 --literal --axis both --frames 20");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("--literal"), std::string::npos) << o.err;
 }
@@ -313,8 +298,8 @@ TEST(AnalyzeCliTest, LiteralAcceptsTheThesisPerChannelRgb) {
 }
 
 TEST(AnalyzeCliTest, LiteralRefusesTheSumOfChannelsWithTheReason) {
-  const Outcome o = RunAnalyze("swing --image " + Photo("aero1.jpg") +
-                               " --strategy h23 --literal --channel rgb-sum --frames 20");
+  const ProcessOutcome o = RunAnalyze("swing --image " + Photo("aero1.jpg") +
+                                      " --strategy h23 --literal --channel rgb-sum --frames 20");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("rgb-sum"), std::string::npos) << o.err;
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
@@ -339,8 +324,8 @@ TEST(AnalyzeCliTest, SurfaceAtThesisPixelCountsSamples2500Random) {
 }
 
 TEST(AnalyzeCliTest, SurfaceRefusesAFrameTooSmallForThePatchNamingSizes) {
-  const Outcome o = RunAnalyze("surface --image " + Photo("fruits.jpg") +
-                               " --sampling static --thesis-pixels --frame 200");
+  const ProcessOutcome o = RunAnalyze("surface --image " + Photo("fruits.jpg") +
+                                      " --sampling static --thesis-pixels --frame 200");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("200"), std::string::npos) << o.err;
 }
@@ -385,7 +370,7 @@ TEST(AnalyzeCliTest, ThesisSlicesEntriesComeFromDistinctSlicesOnTwoSeeds) {
 }
 
 TEST(AnalyzeCliTest, ThesisRefusesAnUnknownEntry) {
-  const Outcome o = RunAnalyze("thesis --only table_9_9");
+  const ProcessOutcome o = RunAnalyze("thesis --only table_9_9");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("table_9_9"), std::string::npos) << o.err;
 }
