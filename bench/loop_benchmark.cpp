@@ -107,8 +107,8 @@ LoopPlan MakePlan(const LoopCommandLine& c) {
   const int scene_count = static_cast<int>(plan.scenes.size());
   plan.sweep_scenes =
       std::min(c.sweep_scenes != 0 ? c.sweep_scenes : (c.quick ? 2 : scene_count), scene_count);
-  plan.sweep_gains =
-      c.quick ? std::vector<double>{0.5, 0.75, 1.0} : std::vector<double>{0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0};
+  plan.sweep_gains = c.quick ? std::vector<double>{0.5, 0.75, 1.0}
+                             : std::vector<double>{0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0};
   return plan;
 }
 

@@ -220,8 +220,7 @@ TEST_F(CtlTest, SspWithoutFramesLeavesTheAgentsDeadline) {
 TEST_F(CtlTest, SspFramesOutOfRangeExitsOneWithTheAgentsReason) {
   const auto outcome = Run("ssp --frames 1");
   EXPECT_EQ(outcome.exit_code, 1);
-  EXPECT_THAT(outcome.err,
-              HasSubstr("set_mode.deadline_frames = 1: must be in [2, 1e+05] frames"));
+  EXPECT_THAT(outcome.err, HasSubstr("set_mode.deadline_frames = 1: must be in [2, 1e+05] frames"));
 }
 
 TEST_F(CtlTest, SspFramesThatIsNotANumberExitsTwo) {
