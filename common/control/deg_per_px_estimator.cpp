@@ -10,6 +10,8 @@
 namespace kapfix {
 namespace {
 
+// [frames] how long after a (re)start the estimate is refitted every frame until first trusted.
+constexpr int kLockOnFrames = 60;
 constexpr int kGridPoints = 49;  // log-spaced θ candidates over the search span
 // [1] per row, on the play's columns: a segment in which the servo never reversed leaves them
 // equal to the offset's column, and the ridge picks one of the equivalent fits.
@@ -28,6 +30,15 @@ constexpr double kMoveSigmaFactor = 3.0;
 // The vertex of a residual curve over the log θ grid (a parabola through the lowest point and
 // its neighbours) and σ of log θ from its curvature, σ² = 2·s²/RSS''; false when the minimum
 // is at the span's edge (not bracketed) or the curve is not convex there.
+// [1] Student's t 97.5 % quantile at `dof` ÷ the normal one (1.96): 1.56 at 3, 1.14 at 10.
+double StudentWidening(int dof) {
+  constexpr double z = 1.959964;
+  const double n = dof;
+  const double t =
+      z + (z * z * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n);
+  return t / z;
+}
+
 bool Vertex(const std::vector<double>& rss, double step, int dof, double* offset_steps, int* best,
             double* sigma) {
   *best = static_cast<int>(std::min_element(rss.begin(), rss.end()) - rss.begin());
@@ -39,7 +50,10 @@ bool Vertex(const std::vector<double>& rss, double step, int dof, double* offset
   // s² per row, never below a matcher's noise floor: frames that a model fits exactly (no
   // noise, a servo that only followed the swing) would otherwise make any θ certain.
   const double s2 = std::max(r1 / std::max(1, dof), kNoiseFloorPx * kNoiseFloorPx);
-  *sigma = std::sqrt(2.0 * s2 / curvature);
+  // With few rows beyond the parameters s² is itself uncertain: σ is widened by Student's t
+  // against the normal quantile (95 %, Cornish–Fisher to 1/dof²), so a lock-on fit on a
+  // dozen rows is trusted only when its interval, not just its point, is narrow.
+  *sigma = std::sqrt(2.0 * s2 / curvature) * StudentWidening(std::max(1, dof));
   return true;
 }
 
@@ -109,6 +123,8 @@ void DegPerPxEstimator::Restart(double start_deg_per_px) {
   direction_ = 0;
   rows_ = 0;
   since_fit_ = 0;
+  lock_on_frames_ = 0;
+  ever_trusted_ = false;
 }
 
 void DegPerPxEstimator::AddMissing() {
@@ -129,9 +145,14 @@ void DegPerPxEstimator::Add(double angle_deg, double displacement_px) {
   while (static_cast<int>(recent_.size()) > options_.order + 1) recent_.pop_front();
   AddRow();
   if (++open_frames_ >= options_.segment_frames) CloseSegment();
-  if (++since_fit_ >= options_.refit_every) {
+  // Until the first trusted fit every frame counts: the lock-on's fits are small, and each
+  // frame earlier that the loop acts on the right calibration is a frame less of wrong
+  // correction (calibration ×0.6 from the first frame).
+  if (++since_fit_ >= options_.refit_every ||
+      (!ever_trusted_ && ++lock_on_frames_ <= kLockOnFrames)) {
     since_fit_ = 0;
     Fit();
+    ever_trusted_ = ever_trusted_ || trusted();
   }
 }
 

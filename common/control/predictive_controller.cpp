@@ -88,7 +88,11 @@ void PredictiveController::RebuildSwingModels() {
 }
 
 bool PredictiveController::Adapt() {
-  if (!options_.adapt_calibration || ++since_adapt_ < options_.adapt_every_frames) return false;
+  // Until the calibration first moves, every frame is checked: on lock-on a wrong
+  // calibration costs the most, and the estimate's first trusted fit should act at once.
+  if (!options_.adapt_calibration || (++since_adapt_ < options_.adapt_every_frames && adapted_)) {
+    return false;
+  }
   since_adapt_ = 0;
   const auto toward = [this](double now, const DegPerPxEstimator& estimator) {
     if (!estimator.trusted()) return now;
@@ -104,6 +108,7 @@ bool PredictiveController::Adapt() {
     return false;
   }
   calibration_ = next;
+  adapted_ = true;
   fallback_.SetCalibration(calibration_);
   RebuildSwingModels();
   // The residual that handed an axis over to P was (partly) the old calibration's: grade the
@@ -135,6 +140,7 @@ void PredictiveController::SetCalibration(const LensCalibration& calibration) {
   pan_estimator_.Restart(calibration.pan_deg_per_px);
   tilt_estimator_.Restart(calibration.tilt_deg_per_px);
   since_adapt_ = 0;
+  adapted_ = false;
   RebuildSwingModels();
 }
 

@@ -95,8 +95,9 @@ class PredictiveController final : public Controller {
     double pan_deg, tilt_deg, dx_px, dy_px;
   };
   std::deque<Sample> recent_;
-  int since_adapt_ = 0;  // [frames] since the calibration last moved (or was checked)
-  bool Adapt();          // true when the calibration moved (the swing models were rebuilt)
+  int since_adapt_ = 0;   // [frames] since the calibration last moved (or was checked)
+  bool adapted_ = false;  // the calibration moved since the stored one was given
+  bool Adapt();           // true when the calibration moved (the swing models were rebuilt)
   void RebuildSwingModels();
   bool predicting_pan_ = false;
   bool predicting_tilt_ = false;

@@ -185,8 +185,30 @@ TEST(DegPerPxEstimatorTest, DoesNotTrustAServoThatOnlyFollowsTheSwing) {
 
 TEST(DegPerPxEstimatorTest, IsNotTrustedBeforeEnoughFrames) {
   DegPerPxEstimator estimator(kTrueDegPerPx * 1.6);
-  Fly(&estimator, 1.0, 11);  // below min_samples (12) fitted rows
+  Fly(&estimator, 1.0, 11);  // 9 fitted rows, below min_samples (10)
   EXPECT_FALSE(estimator.trusted());
+}
+
+TEST(DegPerPxEstimatorTest, IsTrustedOnTheLockOnsFirstFramesNotAtTheNextRefit) {
+  // A calibration ×0.6 costs most on lock-on, so until its first trusted fit the estimate is
+  // refitted every frame, not every refit_every (5): trust comes on the first frame it can.
+  for (const double error : {0.6, 1.6}) {
+    DegPerPxEstimator estimator(kTrueDegPerPx * error);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.2);
+    std::uniform_real_distribution<double> step(-2.0, 2.0);
+    int trusted_at = -1;
+    double angle = 0;
+    for (int t = 0; t < 40 && trusted_at < 0; ++t) {
+      if (t % 2 == 0) angle = step(rng);  // the lock-on's corrections
+      estimator.Add(angle, Swing(t) - angle / kTrueDegPerPx + noise(rng));
+      if (estimator.trusted()) trusted_at = t;
+    }
+    ASSERT_GE(trusted_at, 0) << error;
+    // Fitted only every 5 frames (frames 4, 9, 14…) it would be trusted at 14 at the earliest.
+    EXPECT_LE(trusted_at, 13) << error;
+    EXPECT_NEAR(estimator.estimate_deg_per_px() / kTrueDegPerPx, 1.0, 0.05) << error;
+  }
 }
 
 TEST(DegPerPxEstimatorTest, RestartForgetsTheFrames) {

@@ -127,7 +127,10 @@ TEST(PredictiveControllerTest, ResetForgetsTheSwing) {
   NumericLoop loop(10, 2);
   loop.Run(controller, 100, 0);
   controller.Reset();
-  EXPECT_DOUBLE_EQ(controller.Update(Measured(2), {}).pan_deg, 0.2);  // plain P again
+  // Plain P again, on the calibration the online estimate left (the lens has not changed).
+  const double deg_per_px = controller.calibration().pan_deg_per_px;
+  EXPECT_NEAR(deg_per_px, 0.1, 0.002);
+  EXPECT_DOUBLE_EQ(controller.Update(Measured(2), {}).pan_deg, 2 * deg_per_px);
   EXPECT_FALSE(controller.predicting_pan());
 }
 
