@@ -60,7 +60,8 @@ void AddOptions(CLI::App& app, LoopCommandLine* c) {
                "one line per flight on stderr: x/y RMS, the matcher's miss, forecast share");
   app.add_flag("--trace", c->trace,
                "per flight, DIR/trace_WORLD_SCENE_CONTROLLER_START_GAIN_SEED.csv: one line per "
-               "frame (view error, true/believed/commanded servo angles, measured displacement)");
+               "frame (view error, true/believed/commanded servo angles, measured displacement and "
+               "its confidence, lock)");
   app.add_option("--start", c->start_mode,
                  "how fixation starts: first-frame (--mode fixate), ssp (after SSP's 300-frame "
                  "free swing, on its slice) or both")

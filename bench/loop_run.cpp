@@ -16,13 +16,13 @@ namespace {
 void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
   std::ofstream out(path);
   out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
-         "commanded_tilt,measured_x,measured_y,lock_lost,off_target\n";
+         "commanded_tilt,measured_x,measured_y,confidence,lock_lost,off_target\n";
   for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
     out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
         << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
         << f.believed[k].tilt_deg << ',' << f.commanded[k].pan_deg << ',' << f.commanded[k].tilt_deg
-        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << ',' << (f.lock_lost[k] ? 1 : 0)
-        << ',' << (f.off_target[k] ? 1 : 0) << '\n';
+        << ',' << f.measured_x[k] << ',' << f.measured_y[k] << ',' << f.confidence[k] << ','
+        << (f.lock_lost[k] ? 1 : 0) << ',' << (f.off_target[k] ? 1 : 0) << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
@@ -41,6 +41,7 @@ void DropPerFrame(ClosedLoopFigures* f) {
   f->view_offsets = {};
   f->measured_x = {};
   f->measured_y = {};
+  f->confidence = {};
   f->lock_lost = {};
   f->off_target = {};
   f->angles = {};

@@ -98,14 +98,17 @@ void FillCalibrationEstimate(const PredictiveController* predictive, double px_p
 struct LockHonesty {
   int gross = 0, silent_gross = 0, gross_lock_held = 0, off_target_frames = 0;
 
-  void Add(double view_error, bool lock_lost, bool off_target, ClosedLoopFigures* figures) {
+  // `seen`: the camera delivered the frame, so the loop's claim is about it; a dropped frame
+  // keeps the previous claim in the trace, but no claim was made for it.
+  void Add(double view_error, bool lock_lost, bool off_target, bool seen,
+           ClosedLoopFigures* figures) {
     figures->lock_lost.push_back(lock_lost);
     figures->off_target.push_back(off_target);
     off_target_frames += off_target ? 1 : 0;
     if (view_error > kGrossErrorPx) {
       ++gross;
-      silent_gross += off_target ? 0 : 1;
-      gross_lock_held += lock_lost ? 0 : 1;
+      silent_gross += off_target || !seen ? 0 : 1;
+      gross_lock_held += lock_lost || !seen ? 0 : 1;
     }
   }
   // As shares [%] of all `frames`.
@@ -178,7 +181,7 @@ class ClosedLoopRun {
     figures_.commanded.push_back(last_sent_);
     lock_lost_ = step.lock_lost;
     off_target_ = step.off_target;
-    honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
+    honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/true, &figures_);
     RecordMeasurement(step, offset, frame.frame);
   }
 
@@ -285,10 +288,11 @@ class ClosedLoopRun {
     ++missed_;
     figures_.measured_x.push_back(kNan);
     figures_.measured_y.push_back(kNan);
+    figures_.confidence.push_back(kNan);
     figures_.believed.push_back({kNan, kNan});
     figures_.commanded.push_back({kNan, kNan});
     lost_ += lock_lost_ ? 1 : 0;
-    honesty_.Add(view_error, lock_lost_, off_target_, &figures_);
+    honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/false, &figures_);
   }
 
   // [rad] the camera's roll at `frame`.
@@ -324,6 +328,7 @@ class ClosedLoopRun {
     }
     figures_.measured_x.push_back(step.match.found ? step.match.displacement.x : kNan);
     figures_.measured_y.push_back(step.match.found ? step.match.displacement.y : kNan);
+    figures_.confidence.push_back(step.match.confidence);
     lost_ += step.lock_lost ? 1 : 0;
     if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {
       ++predicting_;

@@ -77,8 +77,9 @@ struct ClosedLoopFigures {
   double p95_error_px = 0;      // [px] 95th percentile of |ViewOffset| over the frames
   // [%] frames whose true view error |ViewOffset| > 10 px (gross), and of those the ones the
   // loop claimed to hold the view (Step::off_target false: lock held, match trusted, measured
-  // within FixationOptions::off_target_px), both as a share of all frames. A dropped frame
-  // keeps the previous frame's claim.
+  // within FixationOptions::off_target_px), both as a share of all frames. A frame the camera
+  // dropped counts in gross but is never silent: the loop saw nothing and claimed nothing for
+  // it (the agent's flight report has no record of it; its telemetry's sequence shows the gap).
   double gross_pct = 0;
   double silent_gross_pct = 0;
   // [%] the gross frames with lock_lost false alone (the first reading, which also
@@ -110,6 +111,7 @@ struct ClosedLoopFigures {
   std::vector<cv::Point2d> view_offsets;  // [px] ViewOffset of each processed frame
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)
   std::vector<double> measured_y;         // [px] measured displacement y (NaN: not found)
+  std::vector<double> confidence;         // [0, 1] the match's confidence (NaN: dropped)
   std::vector<bool> lock_lost;            // Step::lock_lost of each frame (dropped: standing)
   std::vector<bool> off_target;           // Step::off_target of each frame (dropped: standing)
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
