@@ -242,11 +242,22 @@ std::string UnknownCommandReason(const Command& command) {
   const auto& unknown = command.GetReflection()->GetUnknownFields(command);
   for (int i = 0; i < unknown.field_count(); ++i) {
     const int number = unknown.field(i).number();
-    if (number != Command::kHeaderFieldNumber) {
+    if (number == Command::kHeaderFieldNumber) continue;
+    const google::protobuf::Descriptor& descriptor = *Command::descriptor();
+    if (descriptor.IsReservedNumber(number)) {
       return "unknown command: field " + Num(number) +
-             " is not a command this agent knows (it speaks kapfix.v1 up to field " +
-             Num(Command::kSetVideoFieldNumber) + ")";
+             " was removed from kapfix.v1 (the station is older than this agent; see "
+             "command.proto)";
     }
+    // The highest command field, from the descriptor so that it never goes stale.
+    int highest = 0;
+    const google::protobuf::OneofDescriptor& commands = *descriptor.oneof_decl(0);
+    for (int k = 0; k < commands.field_count(); ++k) {
+      highest = std::max(highest, commands.field(k)->number());
+    }
+    return "unknown command: field " + Num(number) +
+           " is not a command this agent knows (it speaks kapfix.v1 up to field " + Num(highest) +
+           ")";
   }
   return "unknown command: the command carries no command field";
 }

@@ -423,6 +423,17 @@ TEST(CommandValidatorUnknownTest, NamesTheFieldNumberOfACommandFromANewerStation
   const auto reply = Check(command);
   EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND);
   EXPECT_THAT(reply.reason(), HasSubstr("field 99"));
+  // The highest command field this agent knows, set_photo (12), not a number written by hand.
+  EXPECT_THAT(reply.reason(), HasSubstr("up to field 12"));
+}
+
+TEST(CommandValidatorUnknownTest, SaysARemovedFieldOfAnOlderStationWasRemoved) {
+  // Field 9, a float: the photo interval an older station sends as set_photo_interval_s.
+  Command command;
+  ASSERT_TRUE(command.ParseFromString(std::string("\x4d\x00\x00\xa0\x40", 5)));
+  const auto reply = Check(command);
+  EXPECT_EQ(reply.error(), kapfix::v1::ERROR_CODE_UNKNOWN_COMMAND);
+  EXPECT_THAT(reply.reason(), HasSubstr("field 9 was removed"));
 }
 
 TEST(CommandValidatorLimitsTest, UsesTheFallbackFrameSizeWhenTheStateHasNone) {
