@@ -3,8 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <string>
 
 #include "agent/modes/run_options.hpp"
+#include "common/fixation/patch_self_confidence.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -18,7 +20,38 @@ void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) 
   reference_frame_ = frame.image.clone();
   reference_index_ = frame.index;
   Build();
-  if (kind_ == AgentMode::kFixate) context_.events().OnReferenceTaken(reference_frame_, current);
+  if (kind_ != AgentMode::kFixate) return;
+  context_.events().OnReferenceTaken(reference_frame_, current);
+  WarnOfAWeakPatch(frame.index);
+}
+
+void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {
+  // SSP judged the slice over the free swing; the patch is whatever part of the scene is under
+  // it now. One the search barely finds in its own frame will not confirm a lock in flight.
+  const FixationOptions& options = loop_->options();
+  const SearchStrategy& strategy = *context_.strategy();
+  const double confidence = PatchSelfConfidence(reference_frame_, options.slice, options, strategy);
+  if (confidence >= options.lock_regain_confidence) return;
+  int best = options.slice;
+  double best_confidence = confidence;
+  for (int slice = 1; slice <= options.slice_count; ++slice) {
+    const double c = PatchSelfConfidence(reference_frame_, slice, options, strategy);
+    if (c > best_confidence) {
+      best = slice;
+      best_confidence = c;
+    }
+  }
+  const std::string instead =
+      best == options.slice
+          ? std::string("no other slice is found better here")
+          : fmt::format(
+                "slice {} is found at {:.2f}: select it (select_slice) if the lock does "
+                "not come",
+                best, best_confidence);
+  spdlog::warn(
+      "frame {}: slice {}'s patch is weak here: the search finds it in its own frame at "
+      "confidence {:.2f}, and a lock is confirmed at {:.2f}, so the lock may never come; {}",
+      frame_index, options.slice, confidence, options.lock_regain_confidence, instead);
 }
 
 void FixateMode::TakeUp(const HeldView& view) {

@@ -36,6 +36,9 @@ class FixateMode : public Mode {
 
  private:
   void Build();
+  // Logs a warning when the fixated slice's patch is one the search barely finds in the
+  // reference frame itself (PatchSelfConfidence), naming the slice that is found best.
+  void WarnOfAWeakPatch(std::uint64_t frame_index) const;
 
   ModeContext& context_;
   const AgentMode kind_;

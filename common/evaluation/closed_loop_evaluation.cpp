@@ -6,11 +6,13 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
 #include "common/control/servo_belief_controller.hpp"
 #include "common/evaluation/free_swing_slice.hpp"
+#include "common/fixation/patch_self_confidence.hpp"
 #include "common/sim/scene_camera.hpp"
 
 namespace kapfix {
@@ -228,8 +230,13 @@ class ClosedLoopRun {
         MakeSearchStrategy(options_.strategy, &error);
     FixationOptions fixation = options_.fixation;
     if (options_.start == ClosedLoopOptions::Start::kAfterSsp) {
-      fixation.slice = FreeSwingSlice(platform_, fixation, *strategy, options_.ssp_frames);
+      const std::vector<int> ranking =
+          FreeSwingRanking(platform_, fixation, *strategy, options_.ssp_frames);
       platform_.Step();
+      // The patch is cut from the frame that becomes the reference, and a slice SSP liked over
+      // the swing may land on a weak part of the scene there: the agent warns the operator
+      // (FixateMode), who takes another slice; here SSP's next slice whose patch passes.
+      fixation.slice = ConfidentSlice(platform_.Capture(), ranking, fixation, *strategy);
     }
     // What the controller believes the servos show: built from the commands sent, never from
     // the servos' true output angles (those stay the simulation's), and resolved from each

@@ -11,6 +11,11 @@ namespace kapfix {
 
 int FreeSwingSlice(SimulatedPlatform& platform, const FixationOptions& fixation,
                    const SearchStrategy& strategy, int frames) {
+  return FreeSwingRanking(platform, fixation, strategy, frames).front();
+}
+
+std::vector<int> FreeSwingRanking(SimulatedPlatform& platform, const FixationOptions& fixation,
+                                  const SearchStrategy& strategy, int frames) {
   if (frames < 2) {
     throw std::invalid_argument("free swing needs ≥ 2 frames, got " + std::to_string(frames));
   }
@@ -33,7 +38,7 @@ int FreeSwingSlice(SimulatedPlatform& platform, const FixationOptions& fixation,
   if (!run || run->frames_used() < 2) {
     throw std::invalid_argument("free swing: fewer than 2 frames reached the camera");
   }
-  return run->Result(/*deadline_hit=*/false).best_slice;
+  return run->Result(/*deadline_hit=*/false).ranking;
 }
 
 }  // namespace kapfix

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "common/fixation/fixation_loop.hpp"
 #include "common/search/search_strategy.hpp"
 #include "common/sim/simulated_platform.hpp"
@@ -14,5 +16,8 @@ namespace kapfix {
 // Throws std::invalid_argument for frames < 2 or a patch that does not fit the frame.
 int FreeSwingSlice(SimulatedPlatform& platform, const FixationOptions& fixation,
                    const SearchStrategy& strategy, int frames);
+// The same SSP's ranking of every slice, best first (SliceSelection::ranking).
+std::vector<int> FreeSwingRanking(SimulatedPlatform& platform, const FixationOptions& fixation,
+                                  const SearchStrategy& strategy, int frames);
 
 }  // namespace kapfix

@@ -4,11 +4,16 @@
 #include "agent/modes/mode_runner.hpp"
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -108,6 +113,43 @@ TEST(ModeRunnerTest, StartModeFixateTakesTheFirstFrameAsReference) {
   EXPECT_EQ(*outcome.reference_frame, 7u);
   EXPECT_EQ(outcome.patch, SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch));
   EXPECT_EQ(runner.mode(), AgentMode::kFixate);
+}
+
+// What the agent logs while `run` runs (spdlog's default logger, restored after).
+std::string LoggedDuring(const std::function<void()>& run) {
+  std::ostringstream log;
+  const std::shared_ptr<spdlog::logger> previous = spdlog::default_logger();
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>(
+      "test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  run();
+  spdlog::set_default_logger(previous);
+  return log.str();
+}
+
+TEST(ModeRunnerTest, FixatingAPatchTheSearchBarelyFindsInItsOwnFrameIsWarnedOf) {
+  // The band of the middle slice (the default), as far as the search reaches, painted flat:
+  // that patch matches itself equally well at every shift; the other slices are textured.
+  CapturedFrame frame = Swing(1)[0];
+  const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
+  const int top = std::max(0, middle.y - 24 - 4);
+  const int bottom = std::min(kFrame.height, middle.br().y + 24 + 4);
+  frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+  RecordingModeEvents events;
+  const std::string log = LoggedDuring([&] {
+    ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+    Feed(runner, frame);
+  });
+  EXPECT_NE(log.find("slice 3's patch is weak here"), std::string::npos) << log;
+  EXPECT_NE(log.find("select it (select_slice)"), std::string::npos) << log;
+}
+
+TEST(ModeRunnerTest, FixatingATexturedPatchWarnsOfNothing) {
+  RecordingModeEvents events;
+  const std::string log = LoggedDuring([&] {
+    ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+    Feed(runner, Swing(1)[0]);
+  });
+  EXPECT_EQ(log.find("is weak"), std::string::npos) << log;
 }
 
 TEST(ModeRunnerTest, FixateMeasuresEachFrameAgainstTheFirst) {

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "common/fixation/fixation_loop.hpp"
+#include "common/search/search_strategy.hpp"
+
+namespace kapfix {
+
+// [0, 1] How confidently the fixation's search finds slice `slice`'s patch in the very frame it
+// is cut from (BGR or grey, 8 bit): the best the loop can hope for in flight, where noise, blur
+// and roll only lower it. SSP judges a slice over the free swing, but the patch the loop stores
+// is whatever part of the scene is under the slice in the reference frame (issue 9: home.jpg
+// after SSP, 0.19 and 0.31 where its lock was never confirmed, 0.47 where it held).
+// Throws std::invalid_argument when the slice's patch does not fit the frame.
+double PatchSelfConfidence(const cv::Mat& frame_bgr, int slice, const FixationOptions& options,
+                           const SearchStrategy& strategy);
+
+// The first slice of `ranking` (best first, e.g. SSP's) whose patch in `frame_bgr` is found at
+// options.lock_regain_confidence or more, the confidence that confirms a lock; ranking's first
+// when none is. Throws std::invalid_argument for an empty ranking.
+int ConfidentSlice(const cv::Mat& frame_bgr, const std::vector<int>& ranking,
+                   const FixationOptions& options, const SearchStrategy& strategy);
+
+}  // namespace kapfix

@@ -1,0 +1,62 @@
+#include "common/fixation/patch_self_confidence.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/search/search_strategy.hpp"
+#include "common/selection/slice_geometry.hpp"
+#include "tests/support/test_images.hpp"
+
+namespace kapfix {
+namespace {
+
+std::shared_ptr<const SearchStrategy> Pyr() {
+  std::string error;
+  return MakeSearchStrategy("pyr", &error);
+}
+
+// aero1.jpg with the band around slice 1's patch (the top one) painted one flat grey, as far as
+// the search reaches beyond it: a featureless part of the scene, which matches itself equally
+// well at every shift. (A flat patch in a textured frame would stand out all the same.)
+cv::Mat PhotoWithAFlatTopSlice(const FixationOptions& options) {
+  cv::Mat frame = testing::LoadOpenCvPhoto("aero1.jpg");
+  const cv::Rect top = SlicePatch(frame.size(), options.slice_count, 1, options.patch_size);
+  const int bottom = std::min(frame.rows, top.br().y + options.search.range + 8);
+  frame(cv::Rect(0, 0, frame.cols, bottom)).setTo(cv::Scalar(128, 128, 128));
+  return frame;
+}
+
+TEST(PatchSelfConfidenceTest, AFeaturelessPatchIsFoundWithoutConfidenceATexturedOneWith) {
+  const FixationOptions options;
+  const cv::Mat frame = PhotoWithAFlatTopSlice(options);
+  EXPECT_LT(PatchSelfConfidence(frame, 1, options, *Pyr()), options.lock_regain_confidence);
+  EXPECT_GE(PatchSelfConfidence(frame, options.slice_count, options, *Pyr()),
+            options.lock_regain_confidence);
+}
+
+TEST(PatchSelfConfidenceTest, ConfidentSliceSkipsAWeakPatchAlongTheRanking) {
+  const FixationOptions options;
+  const cv::Mat frame = PhotoWithAFlatTopSlice(options);
+  EXPECT_EQ(ConfidentSlice(frame, {1, 9, 5}, options, *Pyr()), 9);
+  EXPECT_EQ(ConfidentSlice(frame, {5, 1}, options, *Pyr()), 5);  // the first that passes
+}
+
+TEST(PatchSelfConfidenceTest, ConfidentSliceKeepsSspsFirstWhenNoPatchPasses) {
+  const FixationOptions options;
+  const cv::Mat flat(480, 640, CV_8UC3, cv::Scalar(90, 90, 90));
+  EXPECT_EQ(ConfidentSlice(flat, {3, 1, 2}, options, *Pyr()), 3);
+}
+
+TEST(PatchSelfConfidenceTest, AnEmptyRankingIsRefused) {
+  const FixationOptions options;
+  EXPECT_THROW(ConfidentSlice(PhotoWithAFlatTopSlice(options), {}, options, *Pyr()),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace kapfix
