@@ -35,6 +35,7 @@ void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {
   int best = options.slice;
   double best_confidence = confidence;
   for (int slice = 1; slice <= options.slice_count; ++slice) {
+    if (slice == options.slice) continue;  // measured above
     const double c = PatchSelfConfidence(reference_frame_, slice, options, strategy);
     if (c > best_confidence) {
       best = slice;
