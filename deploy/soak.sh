@@ -4,10 +4,13 @@
 # a station does after a link loss) and so on until the end, while photos are taken every
 # 30 s of camera time. Prints a line per connection, then one PASS/FAIL line per check:
 #   crash          the agent ran to the end and exits 0 on SIGTERM
-#   rss            VmRSS growth under 5 %: the last samples vs. the first ones after the
-#                  warm-up (10 % of the run, at least 20 s); each side is the median of 5
-#                  samples, 5 s apart, because single samples dip by up to 7 % for a moment
-#                  (the allocator returning freed memory) and would fake a growth
+#   rss            VmRSS growth under 5 %: the retained floor at the end vs. the one just
+#                  after the warm-up (10 % of the run, at least 20 s). VmRSS is sampled every
+#                  second; a floor is the lowest of 15 samples. The agent's frame buffers come
+#                  and go by ~8 MB (9 % of VmRSS) many times a second, so a median of a few
+#                  samples moves by more than the limit with no leak at all (a 2 min CI soak
+#                  failed at 5.99 % that way); a leak raises the floor, which holds within
+#                  ~2 % over 6 min here.
 #   telemetry      nothing lost while connected: no telemetry sequence gap and nothing the
 #                  agent dropped before the link (Telemetry.telemetry_dropped), on every
 #                  connection
@@ -140,11 +143,8 @@ while true; do
   resync_photos=$(sed -n 's/^resync .*photos_saved=\([0-9]*\).*/\1/p' "$out.resync")
   "${ctl[@]}" watch --duration "$connected_s" --summary > "$out.watch" 2> "$out.watch.err" &
   ctl_pid=$!
-  ticks=0
   while kill -0 "$ctl_pid" 2> /dev/null; do
     sleep 1
-    ticks=$((ticks + 1))
-    [[ $((ticks % 5)) -eq 0 ]] || continue  # VmRSS every 5 s
     rss=$(rss_kb "$agent_pid")
     if [[ -z $rss ]]; then
       agent_died=1
@@ -222,16 +222,18 @@ else
   report FAIL "crash: agent $agent_exit after $run_s s; log: $work/agent.log"
   tail -n 20 "$work/agent.log" | sed 's/^/    /'
 fi
-# The median of the "elapsed,kB" lines on stdin: the kB.
-median_kb() { cut -d, -f2 | sort -n | awk '{ kb[NR] = $1 } END { if (NR) print kb[int((NR + 1) / 2)] }'; }
-warm_rss=$(awk -F, -v w="$warmup_s" '$1 >= w' "$work/rss.csv" | head -n 5 | median_kb)
-end_rss=$(awk -F, -v w="$warmup_s" '$1 >= w' "$work/rss.csv" | tail -n 5 | median_kb)
+# The floor of the "elapsed,kB" lines on stdin: the lowest kB (what the agent keeps, without
+# the frame buffers in flight at the moment of a sample).
+floor_kb() { cut -d, -f2 | sort -n | head -n 1; }
+floor_samples=15
+warm_rss=$(awk -F, -v w="$warmup_s" '$1 >= w' "$work/rss.csv" | head -n "$floor_samples" | floor_kb)
+end_rss=$(awk -F, -v w="$warmup_s" '$1 >= w' "$work/rss.csv" | tail -n "$floor_samples" | floor_kb)
 if [[ -n $warm_rss && -n $end_rss ]]; then
   growth=$(awk -v w="$warm_rss" -v l="$end_rss" 'BEGIN { printf "%.2f", (l - w) * 100 / w }')
   range=$(awk -F, '{ if (min == "" || $2 < min) min = $2; if ($2 > max) max = $2 }
     END { printf "%d…%d", min, max }' "$work/rss.csv")
   text="rss growth: $growth % (limit 5 %): $warm_rss kB after the $warmup_s s warm-up → $end_rss kB"
-  text+=" at the end (medians of 5 samples; all samples $range kB)"
+  text+=" at the end (floors of $floor_samples samples, 1 s apart; all samples $range kB)"
   if awk -v g="$growth" 'BEGIN { exit !(g < 5) }'; then report PASS "$text"; else report FAIL "$text"; fi
 else
   report FAIL "rss growth: no sample after the $warmup_s s warm-up"
