@@ -73,6 +73,7 @@ LoopReport::LoopReport(LoopPlan plan, std::map<std::string, double> best_gain,
     gross_by_scene_[row][r.flight.scene].push_back(f.gross_pct);
     silent_by_scene_[row][r.flight.scene].push_back(f.silent_gross_pct);
     ratio_[row].push_back(f.deg_per_px_estimate_ratio);
+    floor_[row].push_back(f.aim_floor_rms_px);
   }
 }
 
@@ -105,6 +106,7 @@ LoopReport::RowFigures LoopReport::Figures(const Row& row) const {
   figures.ratio = Median(ratio);
   figures.ratio_min = Lowest(ratio);
   figures.ratio_max = Highest(ratio);
+  figures.floor = Median(Find(floor_, row.label));
   return figures;
 }
 
@@ -132,15 +134,15 @@ void LoopReport::PrintTables(std::FILE* out) const {
 }
 
 void LoopReport::PrintWorldTable(std::FILE* out) const {
-  std::fprintf(out, "%-14s %7s | %9s %9s %9s %9s | %12s %11s | %10s %8s | %9s\n", "world", "P gain",
-               "pred_px", "late_px", "P*_px", "pid_px", "worst pred/P", "(scene)", "max silent",
-               "gross%", "deg/px ×");
+  std::fprintf(out, "%-14s %7s | %9s %9s %9s %9s %9s | %12s %11s | %10s %8s | %9s\n", "world",
+               "P gain", "pred_px", "late_px", "P*_px", "pid_px", "floor_px", "worst pred/P",
+               "(scene)", "max silent", "gross%", "deg/px ×");
   for (const Row& row : rows_) {
     const RowFigures f = Figures(row);
-    std::fprintf(out,
-                 "%-14s %7.2f | %9.2f %9.2f %9.2f %9.2f | %12.2f %11s | %10.2f %8.2f | %9.3f\n",
-                 row.label.c_str(), best_gain_.at(row.world), f.pred, f.late, f.p, f.pid,
-                 f.worst_ratio, f.worst_scene.c_str(), f.worst_silent, f.gross, f.ratio);
+    std::fprintf(
+        out, "%-14s %7.2f | %9.2f %9.2f %9.2f %9.2f %9.2f | %12.2f %11s | %10.2f %8.2f | %9.3f\n",
+        row.label.c_str(), best_gain_.at(row.world), f.pred, f.late, f.p, f.pid, f.floor,
+        f.worst_ratio, f.worst_scene.c_str(), f.worst_silent, f.gross, f.ratio);
   }
 }
 
@@ -192,6 +194,7 @@ nlohmann::json LoopReport::RowJson(const Row& row) const {
   return {{"p_best_gain", best_gain_.at(row.world)},
           {"median_rms_error_px", f.pred},
           {"median_late_rms_error_px", f.late},
+          {"median_aim_floor_px", f.floor},
           {"median_rms_error_px_p_best", f.p},
           {"median_rms_error_px_pid", f.pid},
           {"worst_ratio_to_p_best", f.worst_ratio},

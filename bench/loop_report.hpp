@@ -43,6 +43,7 @@ class LoopReport {
     double p95 = 0, gross = 0;                       // [px], [%] medians over flights
     double worst_silent = 0;                         // [%] highest silent_gross_pct over flights
     double ratio = 0, ratio_min = 0, ratio_max = 0;  // [1] deg/px estimate ÷ truth
+    double floor = 0;  // [px] median aim floor over flights (the world's, whatever the loop)
   };
 
   RowFigures Figures(const Row& row) const;
@@ -59,7 +60,7 @@ class LoopReport {
   std::map<std::string, std::map<std::string, PerScene>> rms_;  // row → scene → controller
   // The predictive controller's, per row (and scene).
   std::map<std::string, PerScene> late_, gross_by_scene_, silent_by_scene_;
-  std::map<std::string, std::vector<double>> p95_, gross_, silent_, ratio_;
+  std::map<std::string, std::vector<double>> p95_, gross_, silent_, ratio_, floor_;
 };
 
 }  // namespace kapfix::bench

@@ -12,17 +12,19 @@ namespace {
 
 // One line per frame of a flight: the true view error, the servos' true output angles, what
 // the loop believed them to be and what it commanded after the frame, and the measured
-// displacement against the true one (−view error) — to see where a world's error is made.
+// displacement against the true one (−view error), and where the motion alone would have put
+// the view (the open loop) — to see where a world's error is made.
 void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
   std::ofstream out(path);
   out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
-         "commanded_tilt,measured_x,measured_y,confidence,lock_lost,off_target\n";
+         "commanded_tilt,measured_x,measured_y,confidence,lock_lost,off_target,open_x,open_y\n";
   for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
     out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
         << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
         << f.believed[k].tilt_deg << ',' << f.commanded[k].pan_deg << ',' << f.commanded[k].tilt_deg
         << ',' << f.measured_x[k] << ',' << f.measured_y[k] << ',' << f.confidence[k] << ','
-        << (f.lock_lost[k] ? 1 : 0) << ',' << (f.off_target[k] ? 1 : 0) << '\n';
+        << (f.lock_lost[k] ? 1 : 0) << ',' << (f.off_target[k] ? 1 : 0) << ','
+        << f.open_offsets[k].x << ',' << f.open_offsets[k].y << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
@@ -39,6 +41,7 @@ double LateRms(const std::vector<cv::Point2d>& view_offsets) {
 
 void DropPerFrame(ClosedLoopFigures* f) {
   f->view_offsets = {};
+  f->open_offsets = {};
   f->measured_x = {};
   f->measured_y = {};
   f->confidence = {};
@@ -64,10 +67,11 @@ std::string LoopRun::DetailLine() const {
   char line[256];
   std::snprintf(line, sizeof line,
                 "late %6.2f | x %6.2f y %6.2f | miss %5.2f | forecast %5.1f%% lost %5.1f%% | "
-                "open %6.2f | deg/px ratio %5.3f σ %5.3f%s\n",
+                "open %6.2f floor %5.2f | deg/px ratio %5.3f σ %5.3f%s\n",
                 late_rms_error_px, f.rms_error_x_px, f.rms_error_y_px, f.measurement_rms_px,
-                f.predicting_pct, f.lock_lost_pct, f.open_loop_rms_px, f.deg_per_px_estimate_ratio,
-                f.deg_per_px_estimate_sigma, f.deg_per_px_estimate_trusted ? " trusted" : "");
+                f.predicting_pct, f.lock_lost_pct, f.open_loop_rms_px, f.aim_floor_rms_px,
+                f.deg_per_px_estimate_ratio, f.deg_per_px_estimate_sigma,
+                f.deg_per_px_estimate_trusted ? " trusted" : "");
   return line;
 }
 

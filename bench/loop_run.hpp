@@ -21,8 +21,8 @@ struct LoopRun {
   // "[k/total] world scene controller start gain seed: RMS px", padded to overwrite the
   // previous progress line.
   std::string ProgressLine(std::size_t k, std::size_t total) const;
-  // The late RMS, x/y RMS, the matcher's miss, forecast and lost shares, open-loop RMS and
-  // the deg/px estimate, for --detail.
+  // The late RMS, x/y RMS, the matcher's miss, forecast and lost shares, open-loop RMS, the
+  // aim floor and the deg/px estimate, for --detail.
   std::string DetailLine() const;
   // trace_WORLD_SCENE_CONTROLLER_START_GAIN_SEED.csv
   std::string TraceFileName() const;
@@ -31,7 +31,8 @@ struct LoopRun {
 // Flies `flight` over `scene_bgr` in `world`, `frames` frames after the reference. With a
 // non-empty trace_dir, writes the flight's per-frame trace there (TraceFileName): view error,
 // the servos' true, believed and commanded angles, the measured displacement, lock and
-// off-target flags. Shares nothing mutable with another Fly: flights may run in parallel.
+// off-target flags, the open-loop offset. Shares nothing mutable with another Fly: flights may run
+// in parallel.
 LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const LoopWorld& world, int frames,
             const std::string& trace_dir);
 

@@ -11,6 +11,7 @@
 #include "common/analysis/statistics.hpp"
 #include "common/control/controller_factory.hpp"
 #include "common/control/servo_belief_controller.hpp"
+#include "common/evaluation/aim_floor.hpp"
 #include "common/evaluation/free_swing_slice.hpp"
 #include "common/fixation/patch_self_confidence.hpp"
 #include "common/sim/scene_camera.hpp"
@@ -194,6 +195,10 @@ class ClosedLoopRun {
     figures_.rms_error_y_px = std::sqrt(sum_y_ / n);
     figures_.rms_error_px = std::sqrt((sum_x_ + sum_y_) / n);
     figures_.open_loop_rms_px = std::sqrt(sum_open_ / n);
+    const SimulatedServoOptions& pan = platform_options_.pan;
+    figures_.aim_floor_rms_px =
+        AimFloorRms(figures_.open_offsets, 1 + pan.latency_frames,
+                    std::max(0, pan.latency_max_frames - pan.latency_frames));
     figures_.lock_lost_pct = 100.0 * lost_ / n;
     figures_.p95_error_px = Percentile(errors_, 95.0);
     figures_.measurement_rms_px = measured_ > 0 ? std::sqrt(sum_miss_ / measured_) : kNan;
@@ -280,6 +285,7 @@ class ClosedLoopRun {
   double RecordViewError(const SimulatedFrame& frame, const cv::Point2d& offset) {
     const cv::Point2d open = platform_.OpenLoopOffset();
     figures_.view_offsets.push_back(offset);
+    figures_.open_offsets.push_back(open);
     figures_.angles.push_back({frame.pan_deg, frame.tilt_deg});
     sum_x_ += offset.x * offset.x;
     sum_y_ += offset.y * offset.y;

@@ -73,8 +73,11 @@ struct ClosedLoopFigures {
   double rms_error_x_px = 0;    // [px] its x component alone
   double rms_error_y_px = 0;    // [px] its y component alone
   double open_loop_rms_px = 0;  // [px] the same for the motion alone (servos off), for scale
-  double lock_lost_pct = 0;     // [%] frames reported lock lost
-  double p95_error_px = 0;      // [px] 95th percentile of |ViewOffset| over the frames
+  // [px] what even a loop that knew the swing's future would leave to the servo's latency
+  // jitter (AimFloorRms over the open-loop offsets; 0 at a fixed latency): the world's floor.
+  double aim_floor_rms_px = 0;
+  double lock_lost_pct = 0;  // [%] frames reported lock lost
+  double p95_error_px = 0;   // [px] 95th percentile of |ViewOffset| over the frames
   // [%] frames whose true view error |ViewOffset| > 10 px (gross), and of those the ones the
   // loop claimed to hold the view (Step::off_target false: lock held, match trusted, measured
   // within FixationOptions::off_target_px), both as a share of all frames. A frame the camera
@@ -109,6 +112,7 @@ struct ClosedLoopFigures {
   bool deg_per_px_estimate_trusted = false;
   double predicting_pct = 0;  // [%] frames where the predictive controller used its forecast
   std::vector<cv::Point2d> view_offsets;  // [px] ViewOffset of each processed frame
+  std::vector<cv::Point2d> open_offsets;  // [px] OpenLoopOffset of each (the motion alone)
   std::vector<double> measured_x;         // [px] measured displacement x (NaN: not found)
   std::vector<double> measured_y;         // [px] measured displacement y (NaN: not found)
   std::vector<double> confidence;         // [0, 1] the match's confidence (NaN: dropped)

@@ -31,7 +31,7 @@ const std::map<std::string, double> kBestGain = {{"nominal", 1.0}, {"realistic",
 
 // The plan's main flights with made-up figures: RMS 10 × (world + 1) + scene index for P,
 // half that for the predictive controller (late: a quarter); silent gross 3 % on
-// realistic/ssp's scene b alone.
+// realistic/ssp's scene b alone; an aim floor of world + scene index + 1.
 std::vector<LoopRun> MadeUpRuns(const LoopPlan& plan) {
   std::vector<LoopRun> runs;
   for (const LoopFlight& flight : plan.MainFlights(kBestGain)) {
@@ -43,6 +43,7 @@ std::vector<LoopRun> MadeUpRuns(const LoopPlan& plan) {
     const bool predictive = flight.controller == "predictive";
     run.figures.rms_error_px = predictive ? p_rms / 2 : p_rms;
     run.late_rms_error_px = p_rms / 4;
+    run.figures.aim_floor_rms_px = static_cast<double>(flight.world) + scene + 1;
     run.figures.silent_gross_pct =
         predictive && run.world == "realistic" && flight.start == "ssp" && scene == 1 ? 3.0 : 0.0;
     runs.push_back(run);
@@ -59,6 +60,13 @@ TEST(LoopReportTest, EachRowHasItsMediansOverScenesTheLateOneIncluded) {
   EXPECT_DOUBLE_EQ(row["median_rms_error_px_p_best"].get<double>(), 20.5);
   EXPECT_DOUBLE_EQ(row["silent_gross_pct"].get<double>(), 3.0);
   EXPECT_EQ(summary["worlds"].size(), 4U);
+}
+
+TEST(LoopReportTest, EachRowHasTheMedianAimFloorOfItsFlights) {
+  const LoopPlan plan = TwoScenePlan();
+  const nlohmann::json summary = LoopReport(plan, kBestGain, MadeUpRuns(plan)).Summary("both");
+  EXPECT_DOUBLE_EQ(summary["worlds"]["nominal"]["median_aim_floor_px"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(summary["worlds"]["realistic/ssp"]["median_aim_floor_px"].get<double>(), 2.5);
 }
 
 TEST(LoopReportTest, TargetsPerStartNameTheWorldWithTheMostSilentGross) {

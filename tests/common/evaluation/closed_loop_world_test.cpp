@@ -140,6 +140,18 @@ TEST(ClosedLoopJitterTest, ThePredictiveLoopStaysWellBelowPUnderLatencyJitter) {
       << "predictive " << predictive.rms_error_px << " px, P " << p.rms_error_px << " px";
 }
 
+// The aim floor is what no aim removes: none at a fixed latency, and under jitter some, but
+// never more than the loop itself leaves.
+TEST(ClosedLoopJitterTest, TheAimFloorIsNoneAtAFixedLatencyAndBelowTheLoopUnderJitter) {
+  EXPECT_EQ(Nominal("predictive", true).aim_floor_rms_px, 0.0);
+  WorldOptions world;
+  world.latency_jitter = 2;
+  const ClosedLoopFigures jitter = Fly(world, "predictive");
+  EXPECT_GT(jitter.aim_floor_rms_px, 0.5);
+  EXPECT_LT(jitter.aim_floor_rms_px, jitter.rms_error_px);
+  EXPECT_EQ(jitter.open_offsets.size(), jitter.view_offsets.size());
+}
+
 // The realistic world's pair: latency 1…2 frames with a lens calibration ×1.3 off. The servo
 // belief reconstructed its views with the calibration and picked the wrong command of two, so
 // the lock-on rang and the flight was far worse than with an exact calibration; it now finds
