@@ -304,6 +304,7 @@ class ClosedLoopRun {
     figures_.confidence.push_back(kNan);
     figures_.believed.push_back({kNan, kNan});
     figures_.commanded.push_back({kNan, kNan});
+    figures_.pan_forecast.push_back({kNan, kNan, kNan});
     lost_ += lock_lost_ ? 1 : 0;
     honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/false, &figures_);
   }
@@ -346,8 +347,18 @@ class ClosedLoopRun {
     if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {
       ++predicting_;
     }
+    figures_.pan_forecast.push_back(PanForecast());
     loop_us_.push_back(step.loop_us);
     total_us_ += step.loop_us;
+  }
+
+  ClosedLoopFigures::PanForecast PanForecast() const {
+    if (!predictive_) return {kNan, kNan, kNan};
+    const double forecaster = predictive_->predicting_pan()
+                                  ? static_cast<double>(predictive_->pan_predictor().chosen())
+                                  : 0.0;
+    return {forecaster, predictive_->pan_forecast_weight(),
+            predictive_->calibration().pan_deg_per_px * platform_options_.px_per_deg};
   }
 
   const ClosedLoopOptions& options_;

@@ -121,6 +121,14 @@ struct ClosedLoopFigures {
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
   std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
   std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
+  // The predictive controller's pan axis after each frame (NaN: another controller, or a
+  // dropped frame): what it acted on (0 plain P, 1 the last step extrapolated, 2 the swing
+  // model; SwingPredictor::Forecaster), the forecast's weight against P [0, 1], and the
+  // calibration it acts on ÷ the true deg/px.
+  struct PanForecast {
+    double forecaster, weight, calibration_ratio;
+  };
+  std::vector<PanForecast> pan_forecast;
 };
 
 // Runs the loop: frame 0 (after SSP: the frame after the free swing) becomes the reference,

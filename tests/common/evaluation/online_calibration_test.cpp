@@ -52,6 +52,18 @@ INSTANTIATE_TEST_SUITE_P(CalibrationErrors, OnlineCalibrationTest, ::testing::Va
                            return param.param < 1 ? std::string("Low") : std::string("High");
                          });
 
+// The per-frame trace shows the calibration the controller acts on moving from the stored one
+// to the truth, and what it acted on (P, the last step extrapolated or the swing model).
+TEST(OnlineCalibrationTest, ThePanForecastTraceFollowsTheCalibrationToTheTruth) {
+  const ClosedLoopFigures f = Fly(1.6, /*adapt=*/true);
+  ASSERT_EQ(f.pan_forecast.size(), f.view_offsets.size());
+  EXPECT_DOUBLE_EQ(f.pan_forecast.front().calibration_ratio, 1.6);
+  EXPECT_NEAR(f.pan_forecast.back().calibration_ratio, 1.0, 0.1);
+  EXPECT_EQ(f.pan_forecast.back().forecaster, 2.0);  // the swing model, once fitted
+  EXPECT_GE(f.pan_forecast.back().weight, 0.0);
+  EXPECT_LE(f.pan_forecast.back().weight, 1.0);
+}
+
 TEST(OnlineCalibrationTest, WithoutAdaptationAWrongCalibrationCostsTheLoop) {
   // The same flight with the estimate only reported: the control for the test above.
   const double exact = LateRms(Fly(1.0, /*adapt=*/false));
