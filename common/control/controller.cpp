@@ -34,9 +34,15 @@ double ControllerGains::BeyondDeadBand(double displacement_px) const {
   return std::max(0.0, std::abs(displacement_px) - dead_band_px);
 }
 
-ServoTargets ControllerGains::LimitRate(const ServoTargets& target, const ServoTargets& current,
+ServoTargets ControllerGains::LimitRate(const ServoTargets& target, const ServoTargets& from,
                                         double dt_s) const {
-  return ApplyRateLimit(target, current, rate_limit_deg_per_s, dt_s);
+  return ApplyRateLimit(target, from, rate_limit_deg_per_s, dt_s);
+}
+
+ControllerGains ControllerGains::WithoutRateLimit() const {
+  ControllerGains gains = *this;
+  gains.rate_limit_deg_per_s = 0;
+  return gains;
 }
 
 ServoTargets ApplyRateLimit(const ServoTargets& target, const ServoTargets& current,

@@ -33,7 +33,8 @@ struct ControllerGains {
   // [px] per axis, measured displacements smaller than this are not corrected, so the
   // servos do not hunt on measurement noise.
   double dead_band_px = 0.5;
-  // [deg/s] largest |target − current| per second of dt on each axis; 0 = none.
+  // [deg/s] largest move of the commanded angle per second on each axis (CommandRateLimiter);
+  // 0 = none.
   double rate_limit_deg_per_s = 0;
   // [px] PID only: the integral term's contribution is clamped to ± this (anti-windup).
   double integral_limit_px = 50;
@@ -45,10 +46,10 @@ struct ControllerGains {
   double Correctable(double displacement_px) const;
   // [px] how far |displacement_px| reaches beyond the dead band; 0 inside it.
   double BeyondDeadBand(double displacement_px) const;
-  // ApplyRateLimit at this rate limit.
-  ServoTargets LimitRate(const ServoTargets& target, const ServoTargets& current,
-                         double dt_s) const;
-
+  // ApplyRateLimit at this rate limit, from `from` (CommandRateLimiter: the previous command).
+  ServoTargets LimitRate(const ServoTargets& target, const ServoTargets& from, double dt_s) const;
+  // The same gains without a rate limit (for a controller inside another that limits last).
+  ControllerGains WithoutRateLimit() const;
   // The operator-set fields by the names of their settings (kapfix.v1.Gains), listed once so
   // that the agent copies its settings in by name: visit(name, field) for each.
   template <typename Visitor>

@@ -35,12 +35,14 @@ void PidController::Reset() {
   integral_ = {0, 0};
   previous_ = {0, 0};
   has_previous_ = false;
+  rate_limiter_.Reset();
 }
 
 ServoTargets PidController::Update(const ControlInput& input, const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
   if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
     has_previous_ = false;  // the next difference would span the gap
+    rate_limiter_.Issued(current);
     return current;
   }
   const cv::Point2d e(gains_.Correctable(d.x), gains_.Correctable(d.y));
@@ -61,7 +63,7 @@ ServoTargets PidController::Update(const ControlInput& input, const ServoTargets
   const cv::Point2d correction_px = gains_.p * e + gains_.i * integral_ + gains_.d * derivative;
   const ServoTargets target{current.pan_deg + correction_px.x * calibration_.pan_deg_per_px,
                             current.tilt_deg + correction_px.y * calibration_.tilt_deg_per_px};
-  return gains_.LimitRate(target, current, input.dt_s);
+  return rate_limiter_.Limit(gains_, target, current, input.dt_s);
 }
 
 }  // namespace kapfix

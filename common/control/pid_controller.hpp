@@ -2,6 +2,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "common/control/command_rate_limiter.hpp"
 #include "common/control/controller.hpp"
 
 namespace kapfix {
@@ -36,6 +37,7 @@ class PidController final : public Controller {
   cv::Point2d integral_{0, 0};
   cv::Point2d previous_{0, 0};
   bool has_previous_ = false;
+  CommandRateLimiter rate_limiter_;
 };
 
 }  // namespace kapfix

@@ -26,6 +26,12 @@ const PredictiveOptions& Validated(const PredictiveOptions& options) {
   return options;
 }
 
+const ControllerGains& Validated(const ControllerGains& gains) {
+  std::string error;
+  if (!gains.IsValid(&error)) throw std::invalid_argument("PredictiveController: " + error);
+  return gains;
+}
+
 }  // namespace
 
 bool PredictiveOptions::IsValid(std::string* error) const {
@@ -52,10 +58,10 @@ bool PredictiveOptions::IsValid(std::string* error) const {
 
 PredictiveController::PredictiveController(ControllerGains gains, LensCalibration calibration,
                                            PredictiveOptions options)
-    : gains_(gains),
+    : gains_(Validated(gains)),
       calibration_(calibration),
       options_(Validated(options)),
-      fallback_(gains, calibration),  // validates gains and calibration
+      fallback_(gains.WithoutRateLimit(), calibration),  // validates the calibration
       pan_(options_.predictor),
       tilt_(options_.predictor),
       pan_estimator_(calibration.pan_deg_per_px, options_.estimator),
@@ -65,6 +71,7 @@ void PredictiveController::Reset() {
   pan_.Clear();
   tilt_.Clear();
   fallback_.Reset();
+  rate_limiter_.Reset();
   pan_trust_ = tilt_trust_ = {};
   predicting_pan_ = predicting_tilt_ = false;
   recent_.clear();
@@ -130,7 +137,7 @@ std::optional<ControlEstimate> PredictiveController::estimate() const {
 }
 
 void PredictiveController::SetGains(const ControllerGains& gains) {
-  fallback_.SetGains(gains);  // validates
+  fallback_.SetGains(Validated(gains).WithoutRateLimit());
   gains_ = gains;
 }
 
@@ -187,7 +194,7 @@ ServoTargets PredictiveController::Coast(double dt_s, const ServoTargets& curren
         *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
     predicting_tilt_ = true;
   }
-  return gains_.LimitRate(target, current, dt_s);
+  return rate_limiter_.Limit(gains_, target, current, dt_s);
 }
 
 void PredictiveController::GradeForecast(const SwingPredictor& predictor, AxisTrust* trust,
@@ -268,7 +275,7 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
   GradeForecast(tilt_, &tilt_trust_, d.y);
   target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
                             proportional.tilt_deg, &predicting_tilt_);
-  return gains_.LimitRate(target, current, input.dt_s);
+  return rate_limiter_.Limit(gains_, target, current, input.dt_s);
 }
 
 }  // namespace kapfix

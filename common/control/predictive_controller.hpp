@@ -3,6 +3,7 @@
 #include <deque>
 #include <string>
 
+#include "common/control/command_rate_limiter.hpp"
 #include "common/control/controller.hpp"
 #include "common/control/deg_per_px_estimator.hpp"
 #include "common/control/proportional_controller.hpp"
@@ -84,7 +85,9 @@ class PredictiveController final : public Controller {
   ControllerGains gains_;
   LensCalibration calibration_;
   PredictiveOptions options_;
+  // Plain P without the rate limit: the blend of it and the forecast is limited once, last.
   ProportionalController fallback_;
+  CommandRateLimiter rate_limiter_;
   SwingPredictor pan_;
   SwingPredictor tilt_;
   DegPerPxEstimator pan_estimator_;

@@ -27,11 +27,14 @@ void ProportionalController::SetGains(const ControllerGains& gains) {
 ServoTargets ProportionalController::Update(const ControlInput& input,
                                             const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
-  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) return current;
+  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
+    rate_limiter_.Issued(current);
+    return current;
+  }
   const ServoTargets target{
       current.pan_deg + gains_.p * gains_.Correctable(d.x) * calibration_.pan_deg_per_px,
       current.tilt_deg + gains_.p * gains_.Correctable(d.y) * calibration_.tilt_deg_per_px};
-  return gains_.LimitRate(target, current, input.dt_s);
+  return rate_limiter_.Limit(gains_, target, current, input.dt_s);
 }
 
 }  // namespace kapfix

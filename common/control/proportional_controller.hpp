@@ -1,5 +1,6 @@
 #pragma once
 
+#include "common/control/command_rate_limiter.hpp"
 #include "common/control/controller.hpp"
 
 namespace kapfix {
@@ -17,7 +18,7 @@ class ProportionalController final : public Controller {
   ProportionalController(ControllerGains gains, LensCalibration calibration);
 
   ServoTargets Update(const ControlInput& input, const ServoTargets& current) override;
-  void Reset() override {}
+  void Reset() override { rate_limiter_.Reset(); }
   std::string name() const override { return "p"; }
   void SetCalibration(const LensCalibration& calibration) override;
   void SetGains(const ControllerGains& gains) override;
@@ -25,6 +26,7 @@ class ProportionalController final : public Controller {
  private:
   ControllerGains gains_;
   LensCalibration calibration_;
+  CommandRateLimiter rate_limiter_;
 };
 
 }  // namespace kapfix

@@ -91,6 +91,19 @@ TEST(SimFlightTest, TheServoBeliefHoldsTheViewUnderLatencyJitter) {
   EXPECT_LT(jittered.lock_lost_pct, 5.0);
 }
 
+// kapfix-agent --sim --calibration-error 0.6 (issue 9: 0.6…1.6 within 1.5 × the nominal RMS).
+// The gains' rate limit counted from the angles a frame was seen through, two commands old,
+// so the commands advanced at half the configured rate: the ×0.6 flight, which needs its
+// servos 1.7 × as far, trailed the swing at 21 px RMS (3.0 px nominal, 500 frames). It now
+// counts from the previous command (CommandRateLimiter): 3.7 px.
+TEST(SimFlightTest, ALensCalibratedLowHoldsNearlyAsWellAsAnExactOne) {
+  AgentConfig config = KiteConfig(kapfix::v1::CONTROLLER_KIND_PREDICTIVE);
+  const FlightFigures exact = Fly(config, 300);
+  config.simulation.world.calibration_error = 0.6;
+  const FlightFigures low = Fly(config, 300);
+  EXPECT_LT(low.rms_error_px, 1.5 * exact.rms_error_px) << "exact " << exact.rms_error_px;
+}
+
 TEST(SimFlightTest, PKeepsNoEstimateAndTheReportSaysWhy) {
   const FlightFigures f = Fly(KiteConfig(kapfix::v1::CONTROLLER_KIND_P), 60);
   EXPECT_TRUE(std::isnan(f.deg_per_px_estimate_ratio));

@@ -22,14 +22,16 @@ TEST(ControllerGainsTest, BeyondDeadBandIsTheExcessOverIt) {
   EXPECT_DOUBLE_EQ(gains.BeyondDeadBand(-5), 3);
 }
 
-TEST(ControllerGainsTest, LimitRateMovesAtMostTheRateTimesTheInterval) {
+TEST(ControllerGainsTest, WithoutRateLimitKeepsEveryOtherGain) {
   ControllerGains gains;
+  gains.p = 0.7;
+  gains.dead_band_px = 2;
   gains.rate_limit_deg_per_s = 10;
-  const ServoTargets limited = gains.LimitRate({5, -5}, {0, 0}, 0.1);
-  EXPECT_DOUBLE_EQ(limited.pan_deg, 1);
-  EXPECT_DOUBLE_EQ(limited.tilt_deg, -1);
-  gains.rate_limit_deg_per_s = 0;  // none
-  EXPECT_DOUBLE_EQ(gains.LimitRate({5, -5}, {0, 0}, 0.1).pan_deg, 5);
+  const ControllerGains unlimited = gains.WithoutRateLimit();
+  EXPECT_DOUBLE_EQ(unlimited.p, 0.7);
+  EXPECT_DOUBLE_EQ(unlimited.dead_band_px, 2);
+  EXPECT_DOUBLE_EQ(unlimited.LimitRate({5, -5}, {0, 0}, 0.1).pan_deg, 5);
+  EXPECT_DOUBLE_EQ(gains.LimitRate({5, -5}, {0, 0}, 0.1).pan_deg, 1);
 }
 
 }  // namespace

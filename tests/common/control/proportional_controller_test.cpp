@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <vector>
 
 namespace kapfix {
 namespace {
@@ -57,6 +58,20 @@ TEST(ProportionalControllerTest, RateLimitBoundsTheMovePerSecond) {
   const ServoTargets t = c.Update(Measured(100, -100, 0.05), {0, 0});  // asks 10° and −20°
   EXPECT_DOUBLE_EQ(t.pan_deg, 0.5);
   EXPECT_DOUBLE_EQ(t.tilt_deg, -0.5);
+}
+
+// The angles a frame was seen through lag the commands by the actuation delay (2 frames
+// here): the rate limit still lets the commands advance every frame.
+TEST(ProportionalControllerTest, UnderADelayTheRateLimitLetsTheCommandsAdvanceEveryFrame) {
+  ControllerGains gains;
+  gains.rate_limit_deg_per_s = 10;
+  ProportionalController c(gains, kLens);
+  std::vector<double> sent = {0, 0};  // what the servo had been sent before
+  for (int frame = 0; frame < 4; ++frame) {
+    const double seen = sent[sent.size() - 2];  // the command of two frames ago
+    sent.push_back(c.Update(Measured(100, 0, 0.05), {seen, 0}).pan_deg);
+  }
+  EXPECT_DOUBLE_EQ(sent.back(), 2.0);  // 4 frames × 0.5°, not 2 × 0.5°
 }
 
 TEST(ProportionalControllerTest, RateLimitWithoutElapsedTimeHolds) {
