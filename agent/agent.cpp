@@ -12,7 +12,7 @@
 #include "agent/capture/aravis_frame_source.hpp"
 #include "agent/capture/sim_frame_source.hpp"
 #include "agent/capture/v4l2_frame_source.hpp"
-#include "agent/config/options_from_settings.hpp"
+#include "agent/modes/run_options.hpp"
 #include "agent/resume/boot_id.hpp"
 #include "agent/resume/stored_settings.hpp"
 #include "agent/servo/maestro_servo_driver.hpp"
@@ -21,7 +21,6 @@
 #include "agent/still_camera/gphoto2_still_camera.hpp"
 #include "agent/still_camera/still_camera_trigger.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
-#include "common/shutter/best_phase_shutter.hpp"
 #include "kapfix/v1/envelope_codec.hpp"
 #include "link/curve_key_file.hpp"
 #include "link/link_endpoint.hpp"
@@ -36,46 +35,6 @@ constexpr int kHardwareActuationDelayFrames = 2;
 // apart), the servo driver's reopen one at a time, so a full queue means a disk or a device
 // that has stopped. One queue: a reopen may wait behind a disk write (and the other way round).
 constexpr std::size_t kWorkerJobs = 16;
-
-SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind) {
-  return kind == MotionKind::kBoat ? SimulatedPlatformOptions::Motion::kBoat
-                                   : SimulatedPlatformOptions::Motion::kKite;
-}
-
-SimulatedPlatformOptions PlatformOptions(const AgentConfig& config) {
-  const ClosedLoopOptions base =
-      ClosedLoopOptions::ForMotion(ToPlatformMotion(config.simulation.motion));
-  SimulatedPlatformOptions o = base.platform;
-  o.kite.seed = config.simulation.seed;
-  o.kite.gusts = config.simulation.gusts;
-  o.boat.seed = config.simulation.seed;
-  o.camera.seed = config.simulation.seed;
-  o.camera.frame_size = {config.camera.width, config.camera.height};
-  // The lens profile is what the controller believes; the simulated truth differs from it
-  // by the world's calibration error.
-  o.px_per_deg = config.simulation.world.calibration_error / config.active_lens().DegPerPxPan();
-  const bool default_gusts = config.simulation.world.gusts == WorldOptions::Gusts::kPeriodic;
-  config.simulation.world.ApplyTo(&o);
-  // --blur smears each frame over the photo's exposure (issue 13), at most one frame period.
-  if (config.simulation.world.blur) {
-    o.camera.motion_blur_exposure =
-        std::min(1.0, OptionsFromSettings<BestPhaseShutterOptions>(config.photo).exposure_s() *
-                          config.camera.fps);
-  }
-  if (default_gusts) o.kite.gusts = config.simulation.gusts;
-  o.pan.min_deg = config.servo.pan.limits.min_deg;
-  o.pan.max_deg = config.servo.pan.limits.max_deg;
-  o.pan.initial_deg = config.servo.pan.limits.park_deg;
-  o.tilt.min_deg = config.servo.tilt.limits.min_deg;
-  o.tilt.max_deg = config.servo.tilt.limits.max_deg;
-  o.tilt.initial_deg = config.servo.tilt.limits.park_deg;
-  // The simulated servos are exactly as fast as the limiter lets the agent command them (the
-  // configured max_rate is the servo's rated speed or less): every command it sends is one
-  // the servo reaches, so the loop's belief of the angle (the command) can be right.
-  o.pan.rate_limit_deg_per_frame = config.servo.pan.limits.max_rate_deg_per_s / config.camera.fps;
-  o.tilt.rate_limit_deg_per_frame = config.servo.tilt.limits.max_rate_deg_per_s / config.camera.fps;
-  return o;
-}
 
 // "tcp://*:5555" → "tcp://127.0.0.1:5555": the same port, this machine only.
 std::string LoopbackAddress(const std::string& address) {
@@ -275,7 +234,7 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
     const std::string& scene_path = config_.simulation.scene;
     const cv::Mat scene = cv::imread(scene_path, cv::IMREAD_COLOR);
     if (scene.empty()) throw std::runtime_error("cannot read scene image '" + scene_path + "'");
-    const SimulatedPlatformOptions platform_options = PlatformOptions(config_);
+    const SimulatedPlatformOptions platform_options = MakePlatformOptions(config_);
     if (!platform_options.IsValid(&error)) throw std::runtime_error("simulation: " + error);
     platform_ = std::make_shared<SimulatedPlatform>(scene, platform_options);
     if (platform_->upscale_factor() > 1.0) {

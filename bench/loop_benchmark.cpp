@@ -4,7 +4,9 @@
 // PID, predictive — the default) × seeds, flown headless by EvaluateClosedLoop from the first
 // frame (--mode fixate) and/or after SSP (--start), --jobs flights at a time. Prints a table,
 // writes DIR/loop.csv, DIR/loop_heatmap.png and DIR/summary.json, the same whatever --jobs.
-// Progress on stderr.
+// Progress on stderr. Every flight is the loop kapfix-agent --sim flies with its built-in
+// configuration, or with --config's (servo speed, gains and their rate limit, search, frame
+// rate), in the benchmark's own worlds and scenes.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -18,6 +20,9 @@
 #include <thread>
 #include <vector>
 
+#include "agent/agent.hpp"
+#include "agent/config_file/agent_config_file.hpp"
+#include "agent/modes/run_options.hpp"
 #include "bench/loop_parallel_flights.hpp"
 #include "bench/loop_plan.hpp"
 #include "bench/loop_report.hpp"
@@ -37,6 +42,7 @@ struct LoopCommandLine {
   bool quick = false, detail = false, trace = false, dry_run = false;
   int frames = 0, seeds = 3, sweep_scenes = 0, jobs = Cores();
   std::string out_dir = "loop-bench";
+  std::string config_path;
   std::string start_mode = "first-frame";
   std::vector<std::string> only_worlds, only_scenes, only_controllers;
 };
@@ -71,6 +77,11 @@ void AddOptions(CLI::App& app, LoopCommandLine* c) {
   app.add_flag("--dry-run", c->dry_run,
                "print the plan (flights per kind, the time estimate) and fly nothing");
   app.add_option("--out", c->out_dir, "folder for loop.csv, loop_heatmap.png, summary.json");
+  app.add_option("--config", c->config_path,
+                 "fly the loop of this kapfix-agent configuration file (servos, gains, search, "
+                 "camera rate; its scene and world are the benchmark's); default: the agent's "
+                 "built-in simulation")
+      ->check(CLI::ExistingFile);
 }
 
 // The worlds named in `only` (all when empty), in table order; false and a one-line reason
@@ -87,6 +98,20 @@ bool SelectWorlds(const std::vector<std::string>& only, std::vector<LoopWorld>* 
   for (const LoopWorld& w : LoopWorlds()) *error += " " + w.name;
   *error += ")";
   return false;
+}
+
+// The loop kapfix-agent flies: with --config's configuration, else its built-in one (a kite);
+// false and the configuration's error.
+bool ReadAgentLoop(const std::string& config_path, ClosedLoopOptions* agent_loop,
+                   std::string* error) {
+  agent::AgentConfig config = agent::BuiltInConfig(agent::MotionKind::kKite);
+  if (!config_path.empty()) {
+    if (!agent::LoadAgentConfig(config_path, &config, error) || !config.IsValid(error)) {
+      return false;
+    }
+  }
+  *agent_loop = agent::MakeClosedLoopOptions(config);
+  return true;
 }
 
 LoopPlan MakePlan(const LoopCommandLine& c) {
@@ -148,8 +173,8 @@ std::vector<LoopRun> FlyAll(const std::vector<LoopFlight>& flights, const LoopPl
       flights.size(), jobs,
       [&](std::size_t k) {
         const LoopFlight& flight = flights[k];
-        runs[k] =
-            Fly(scenes.at(flight.scene), flight, plan.worlds[flight.world], plan.frames, trace_dir);
+        runs[k] = Fly(scenes.at(flight.scene), flight, plan.agent_loop, plan.worlds[flight.world],
+                      plan.frames, trace_dir);
       },
       [&](std::size_t k) { progress->Report(runs[k]); });
   return runs;
@@ -163,7 +188,7 @@ void WarmUp(const LoopPlan& plan, const cv::Mat& scene) {
   for (const LoopWorld& world : plan.worlds) {
     for (const std::string& start : plan.starts) {
       ClosedLoopOptions options =
-          LoopFlight{"", 0, "predictive", start, 1.0, 1}.Options(world.options, 2);
+          LoopFlight{"", 0, "predictive", start, 1.0, 1}.Options(plan.agent_loop, world.options, 2);
       options.ssp_frames = 10;  // ≥ 2 reach the camera: the worlds drop at most 2 %
       EvaluateClosedLoop(scene, options);
     }
@@ -200,7 +225,8 @@ int Main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   LoopPlan plan = MakePlan(c);
   std::string error;
-  if (!SelectWorlds(c.only_worlds, &plan.worlds, &error) || !plan.IsValid(&error)) {
+  if (!SelectWorlds(c.only_worlds, &plan.worlds, &error) ||
+      !ReadAgentLoop(c.config_path, &plan.agent_loop, &error) || !plan.IsValid(&error)) {
     std::fprintf(stderr, "kapfix-bench-loop: %s\n", error.c_str());
     return 2;
   }
@@ -213,6 +239,7 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "kapfix-bench-loop: %s\n", error.c_str());
     return 1;
   }
+  std::fprintf(stderr, "%s", plan.DescribeAgentLoop().c_str());
   std::fprintf(stderr, "%zu flights, about %.0f min at --jobs %d\n",
                plan.SweepCount() + plan.MainCount(),
                std::max(1.0, plan.EstimatedSeconds(c.jobs, Cores()) / 60.0), c.jobs);

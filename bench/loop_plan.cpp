@@ -49,20 +49,26 @@ std::vector<LoopWorld> LoopWorlds() {
   return worlds;
 }
 
-ClosedLoopOptions LoopFlight::Options(const WorldOptions& world_options, int frames) const {
-  ClosedLoopOptions o;
+ClosedLoopOptions LoopFlight::Options(const ClosedLoopOptions& agent_loop,
+                                      const WorldOptions& world_options, int frames) const {
+  ClosedLoopOptions o = agent_loop;
   o.frames = frames;
   o.start =
       start == "ssp" ? ClosedLoopOptions::Start::kAfterSsp : ClosedLoopOptions::Start::kFirstFrame;
   o.world = world_options;
   o.controller = controller;
-  if (controller != "predictive") o.gains.p = gain;  // the default controller keeps its gains
+  if (controller != "predictive") {  // the default controller keeps the configured gains
+    o.gains.p = gain;
+    o.gains.i = 0;
+    o.gains.d = 0;
+  }
   if (controller == "pid") {
     // A PID as an operator would set it: the P gain plus a little integral and derivative.
     o.gains.i = 0.5;
     o.gains.d = 0.01;
   }
   o.platform.kite.seed = static_cast<std::uint32_t>(seed);
+  o.platform.boat.seed = static_cast<std::uint32_t>(seed);
   o.platform.camera.seed = static_cast<std::uint32_t>(seed);
   return o;
 }
@@ -77,6 +83,7 @@ bool LoopPlan::IsValid(std::string* error) const {
     return fail("the plan needs at least one scene, world, controller and start");
   }
   if (!Known(controllers, "p")) return fail("controller p (the baseline) is missing");
+  if (!agent_loop.IsValid(error)) return false;
   for (const std::string& start : starts) {
     if (start != "first-frame" && start != "ssp") return fail("unknown start '" + start + "'");
   }
@@ -133,16 +140,30 @@ double LoopPlan::EstimatedSeconds(int jobs, int cores) const {
   const double ssp_flights = static_cast<double>(MainCount()) *
                              static_cast<double>(std::count(starts.begin(), starts.end(), "ssp")) /
                              static_cast<double>(starts.size());
-  const double ssp_frames = ClosedLoopOptions{}.ssp_frames;
+  const double ssp_frames = agent_loop.ssp_frames;
   const double busy = static_cast<double>(SweepCount() + MainCount()) * per_flight +
                       ssp_flights * ssp_frames * kSecondsPerSspFrame;
   // Flights beyond the cores share them; a job per core is the most that helps.
   return busy / std::max(1, std::min(jobs, cores));
 }
 
+std::string LoopPlan::DescribeAgentLoop() const {
+  const ClosedLoopOptions& a = agent_loop;
+  char line[320];
+  std::snprintf(
+      line, sizeof line,
+      "the agent's loop: %s controller, P %.2f, rate limit %.0f deg/s, dead band %.1f px; "
+      "%.0f frames/s; servos %.1f deg/frame; %s search on a %d px patch; SSP's free "
+      "swing %d frames\n",
+      a.controller.c_str(), a.gains.p, a.gains.rate_limit_deg_per_s, a.gains.dead_band_px,
+      1.0 / a.frame_period_s, a.platform.pan.rate_limit_deg_per_frame, a.strategy.c_str(),
+      a.fixation.patch_size, a.ssp_frames);
+  return line;
+}
+
 std::string LoopPlan::Describe(int jobs, int cores) const {
   char line[256];
-  std::string text;
+  std::string text = DescribeAgentLoop();
   std::snprintf(line, sizeof line,
                 "P-gain sweep: %zu worlds × %zu gains × %d scenes (seed 1, first-frame) = %zu "
                 "flights\n",
@@ -164,7 +185,7 @@ std::string LoopPlan::Describe(int jobs, int cores) const {
   for (const std::string& start : starts) {
     std::snprintf(line, sizeof line, "  %-10s %zu flights%s\n", start.c_str(),
                   MainCount() / starts.size() + (start == "first-frame" ? SweepCount() : 0),
-                  start == "ssp" ? " (each after a 300-frame free swing)" : "");
+                  start == "ssp" ? " (each after SSP's free swing)" : "");
     text += line;
   }
   const double minutes = EstimatedSeconds(jobs, cores) / 60.0;

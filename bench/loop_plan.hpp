@@ -29,8 +29,12 @@ struct LoopFlight {
   double gain = 1;         // P gain of "p" and "pid" (the predictive controller keeps its own)
   int seed = 1;
 
-  // EvaluateClosedLoop's options for this flight in `world`, `frames` after the reference.
-  ClosedLoopOptions Options(const WorldOptions& world, int frames) const;
+  // EvaluateClosedLoop's options for this flight in `world`, `frames` after the reference:
+  // `agent_loop` (LoopPlan::agent_loop) with this flight's world, seed, start and controller.
+  // P and PID take its gains with their own P gain (PID a little I and D), the predictive
+  // controller its gains whole: each keeps the configured rate limit and dead band.
+  ClosedLoopOptions Options(const ClosedLoopOptions& agent_loop, const WorldOptions& world,
+                            int frames) const;
 };
 
 // What the benchmark flies: first P's gain sweep per world (seed 1, from the first frame, on
@@ -45,6 +49,9 @@ struct LoopPlan {
   std::vector<std::string> controllers;  // "p" always among them: the baseline
   std::vector<std::string> starts;       // "first-frame" and/or "ssp"
   std::vector<double> sweep_gains;
+  // The loop kapfix-agent --sim flies with its configuration (agent::MakeClosedLoopOptions):
+  // servo speed, gains and their rate limit, search, frame period. Every flight starts from it.
+  ClosedLoopOptions agent_loop;
 
   bool IsValid(std::string* error) const;
 
@@ -58,7 +65,10 @@ struct LoopPlan {
   // [s] wall-clock estimate of the whole plan at `jobs` parallel flights on `cores` cores,
   // from the cost per simulated frame measured on the project's machine (see the .cpp).
   double EstimatedSeconds(int jobs, int cores) const;
-  // The plan in a few lines (flights per kind, the estimate), for --dry-run.
+  // One line: the agent's loop every flight starts from (controller, gains, rate limit, frame
+  // rate, servo speed, search), so that a table says what it measured.
+  std::string DescribeAgentLoop() const;
+  // The plan in a few lines (the agent's loop, flights per kind, the estimate), for --dry-run.
   std::string Describe(int jobs, int cores) const;
 };
 

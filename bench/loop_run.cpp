@@ -85,10 +85,11 @@ std::string LoopRun::TraceFileName() const {
          "_" + gain_text + "_" + std::to_string(flight.seed) + ".csv";
 }
 
-LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const LoopWorld& world, int frames,
-            const std::string& trace_dir) {
+LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const ClosedLoopOptions& agent_loop,
+            const LoopWorld& world, int frames, const std::string& trace_dir) {
   LoopRun run{flight, world.name,
-              EvaluateClosedLoop(scene_bgr, flight.Options(world.options, frames)), 0.0};
+              EvaluateClosedLoop(scene_bgr, flight.Options(agent_loop, world.options, frames)),
+              0.0};
   run.late_rms_error_px = LateRms(run.figures.view_offsets);
   if (!trace_dir.empty()) WriteTrace(trace_dir + "/" + run.TraceFileName(), run.figures);
   DropPerFrame(&run.figures);

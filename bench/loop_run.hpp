@@ -28,12 +28,13 @@ struct LoopRun {
   std::string TraceFileName() const;
 };
 
-// Flies `flight` over `scene_bgr` in `world`, `frames` frames after the reference. With a
+// Flies `flight` over `scene_bgr` in `world`, `frames` frames after the reference, from the
+// agent's loop `agent_loop` (LoopFlight::Options). With a
 // non-empty trace_dir, writes the flight's per-frame trace there (TraceFileName): view error,
 // the servos' true, believed and commanded angles, the measured displacement, lock and
 // off-target flags, the open-loop offset. Shares nothing mutable with another Fly: flights may run
 // in parallel.
-LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const LoopWorld& world, int frames,
-            const std::string& trace_dir);
+LoopRun Fly(const cv::Mat& scene_bgr, const LoopFlight& flight, const ClosedLoopOptions& agent_loop,
+            const LoopWorld& world, int frames, const std::string& trace_dir);
 
 }  // namespace kapfix::bench

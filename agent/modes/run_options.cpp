@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "agent/config/options_from_settings.hpp"
+#include "common/shutter/best_phase_shutter.hpp"
+#include "kapfix/v1/settings_schema.hpp"
 
 namespace kapfix::agent {
 namespace {
@@ -58,6 +61,64 @@ PatchSizeSelectionOptions MakePatchSizeSelectionOptions(const SearchConfig& sear
   }
   o.sampling = search.sampling;
   o.search = MakeSearchOptions(search);
+  return o;
+}
+
+SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind) {
+  return kind == MotionKind::kBoat ? SimulatedPlatformOptions::Motion::kBoat
+                                   : SimulatedPlatformOptions::Motion::kKite;
+}
+
+SimulatedPlatformOptions MakePlatformOptions(const AgentConfig& config) {
+  const ClosedLoopOptions base =
+      ClosedLoopOptions::ForMotion(ToPlatformMotion(config.simulation.motion));
+  SimulatedPlatformOptions o = base.platform;
+  o.kite.seed = config.simulation.seed;
+  o.kite.gusts = config.simulation.gusts;
+  o.boat.seed = config.simulation.seed;
+  o.camera.seed = config.simulation.seed;
+  o.camera.frame_size = {config.camera.width, config.camera.height};
+  // The lens profile is what the controller believes; the simulated truth differs from it
+  // by the world's calibration error.
+  o.px_per_deg = config.simulation.world.calibration_error / config.active_lens().DegPerPxPan();
+  const bool default_gusts = config.simulation.world.gusts == WorldOptions::Gusts::kPeriodic;
+  config.simulation.world.ApplyTo(&o);
+  // --blur smears each frame over the photo's exposure (issue 13), at most one frame period.
+  if (config.simulation.world.blur) {
+    o.camera.motion_blur_exposure =
+        std::min(1.0, OptionsFromSettings<BestPhaseShutterOptions>(config.photo).exposure_s() *
+                          config.camera.fps);
+  }
+  if (default_gusts) o.kite.gusts = config.simulation.gusts;
+  o.pan.min_deg = config.servo.pan.limits.min_deg;
+  o.pan.max_deg = config.servo.pan.limits.max_deg;
+  o.pan.initial_deg = config.servo.pan.limits.park_deg;
+  o.tilt.min_deg = config.servo.tilt.limits.min_deg;
+  o.tilt.max_deg = config.servo.tilt.limits.max_deg;
+  o.tilt.initial_deg = config.servo.tilt.limits.park_deg;
+  // The simulated servos are exactly as fast as the limiter lets the agent command them (the
+  // configured max_rate is the servo's rated speed or less): every command it sends is one
+  // the servo reaches, so the loop's belief of the angle (the command) can be right.
+  o.pan.rate_limit_deg_per_frame = config.servo.pan.limits.max_rate_deg_per_s / config.camera.fps;
+  o.tilt.rate_limit_deg_per_frame = config.servo.tilt.limits.max_rate_deg_per_s / config.camera.fps;
+  return o;
+}
+
+ClosedLoopOptions MakeClosedLoopOptions(const AgentConfig& config) {
+  ClosedLoopOptions o = ClosedLoopOptions::ForMotion(ToPlatformMotion(config.simulation.motion));
+  AgentConfig without_world = config;
+  without_world.simulation.world = WorldOptions{};
+  o.platform = MakePlatformOptions(without_world);
+  o.world = config.simulation.world;
+  o.fixation = MakeFixationOptions(config.search, o.fixation.slice, o.fixation.reference);
+  o.strategy = config.search.strategy;
+  o.controller = kapfix::v1::WordOf(config.gains.controller());
+  o.gains = MakeGains(config.gains);
+  o.frame_period_s = 1.0 / config.camera.fps;
+  // The free swing ends at whichever of its two deadlines comes first (simulated time).
+  o.ssp_frames =
+      std::min(config.search.swing_frames,
+               static_cast<int>(std::lround(config.search.swing_seconds * config.camera.fps)));
   return o;
 }
 

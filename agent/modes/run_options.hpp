@@ -4,10 +4,12 @@
 
 #include "agent/config/agent_config.hpp"
 #include "common/control/controller.hpp"
+#include "common/evaluation/closed_loop_evaluation.hpp"
 #include "common/fixation/fixation_loop.hpp"
 #include "common/search/search_strategy.hpp"
 #include "common/selection/patch_size_selection.hpp"
 #include "common/selection/slice_selection_options.hpp"
+#include "common/sim/simulated_platform.hpp"
 
 namespace kapfix::agent {
 
@@ -23,6 +25,23 @@ FixationOptions MakeFixationOptions(const SearchConfig& search, int slice,
 SliceSelectionOptions MakeSliceSelectionOptions(const SearchConfig& search);
 // The thesis's candidate sizes that fit into a `plane` of this size.
 PatchSizeSelectionOptions MakePatchSizeSelectionOptions(const SearchConfig& search, cv::Size plane);
+
+// The simulated platform `kapfix-agent --sim` flies: the motion, seed, frame size, lens, servo
+// limits and speed of the configuration, with its world's disturbances applied (the world's
+// calibration error scales the truth against the lens profile the controller believes).
+SimulatedPlatformOptions::Motion ToPlatformMotion(MotionKind kind);
+SimulatedPlatformOptions MakePlatformOptions(const AgentConfig& config);
+
+// The closed loop `kapfix-agent --sim --mode fixate` flies with this configuration, as
+// EvaluateClosedLoop's options, so that the loop benchmark flies what the agent flies and the
+// two cannot part (issue 9: they did, on the gains' rate limit): its platform, controller kind
+// and gains (the rate limit and dead band included), search and fixation, frame period and
+// free-swing length. The configuration's world goes to `world`, which EvaluateClosedLoop
+// applies, not into `platform`. Not carried: --blur's shutter time follows the photo exposure
+// in the agent and is half a frame in the evaluation; with a calibration error the agent
+// scales the true deg/px (the swing in pixels grows with it) where the evaluation scales the
+// controller's belief (the same swing, a wrong belief): the same error ratio either way.
+ClosedLoopOptions MakeClosedLoopOptions(const AgentConfig& config);
 
 // Whether two settings build the same fixation loop (search, controller kind, active lens)
 // but for the controller's gains, which the loop takes without a rebuild. A setting re-sent

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "tests/support/process.hpp"
@@ -68,6 +69,37 @@ TEST(LoopBenchmarkTest, DryRunPrintsThePlanAndFliesNothing) {
   EXPECT_NE(outcome.out.find("2160 flights of 500 frames, about"), std::string::npos)
       << outcome.out;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out"));
+}
+
+TEST(LoopBenchmarkTest, ByDefaultItFliesTheAgentsBuiltInLoopWithItsRateLimit) {
+  const kapfix::testing::TempDir dir;
+  const ProcessOutcome outcome = RunLoopBench(dir.path(), "--dry-run --out out");
+  ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
+  // settings.proto's initial rate limit, the agent's 30 frames/s and 120 deg/s servos.
+  EXPECT_NE(outcome.out.find("predictive controller, P 1.00, rate limit 90 deg/s"),
+            std::string::npos)
+      << outcome.out;
+  EXPECT_NE(outcome.out.find("30 frames/s; servos 4.0 deg/frame"), std::string::npos)
+      << outcome.out;
+}
+
+TEST(LoopBenchmarkTest, ConfigFliesThatConfigurationsLoop) {
+  const kapfix::testing::TempDir dir;
+  const ProcessOutcome outcome = RunLoopBench(
+      dir.path(), "--dry-run --out out --config " KAPFIX_SOURCE_DIR "/resources/kite.json");
+  ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
+  EXPECT_NE(outcome.out.find("P 0.80, rate limit 120 deg/s"), std::string::npos) << outcome.out;
+  EXPECT_NE(outcome.out.find("60 frames/s; servos 2.5 deg/frame"), std::string::npos)
+      << outcome.out;
+}
+
+TEST(LoopBenchmarkTest, ABadConfigIsRefusedNamingTheField) {
+  const kapfix::testing::TempDir dir;
+  { std::ofstream(dir.path() / "bad.json") << R"({"camera": {"fps": -5}})"; }
+  const ProcessOutcome outcome = RunLoopBench(dir.path(), "--dry-run --out out --config bad.json");
+  EXPECT_EQ(outcome.exit_code, 2);
+  const std::string err = ReadFile(dir.path() / "stderr.txt");
+  EXPECT_NE(err.find("camera.fps"), std::string::npos) << err;
 }
 
 TEST(LoopBenchmarkTest, UnknownWorldIsRefusedInOneLineNamingTheKnownOnes) {

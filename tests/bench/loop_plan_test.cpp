@@ -115,9 +115,21 @@ TEST(LoopPlanTest, IsValidRefusesMoreSweepScenesThanScenes) {
   EXPECT_NE(error.find("got 4"), std::string::npos) << error;
 }
 
+// An agent's loop unlike EvaluateClosedLoop's defaults in everything a flight keeps.
+ClosedLoopOptions AgentLoop() {
+  ClosedLoopOptions o;
+  o.gains.p = 0.7;
+  o.gains.rate_limit_deg_per_s = 90;
+  o.gains.dead_band_px = 1.5;
+  o.frame_period_s = 1.0 / 30;
+  o.platform.pan.rate_limit_deg_per_frame = 4;
+  o.world = WorldOptions::Realistic();
+  return o;
+}
+
 TEST(LoopFlightTest, OptionsCarryTheSeedStartWorldAndGain) {
   const LoopFlight flight{"aero1.jpg", 0, "pid", "ssp", 0.8, 7};
-  const ClosedLoopOptions o = flight.Options(WorldOptions::Realistic(), 123);
+  const ClosedLoopOptions o = flight.Options(AgentLoop(), WorldOptions::Nominal(), 123);
   EXPECT_EQ(o.frames, 123);
   EXPECT_EQ(o.start, ClosedLoopOptions::Start::kAfterSsp);
   EXPECT_EQ(o.controller, "pid");
@@ -125,12 +137,40 @@ TEST(LoopFlightTest, OptionsCarryTheSeedStartWorldAndGain) {
   EXPECT_GT(o.gains.i, 0);
   EXPECT_EQ(o.platform.kite.seed, 7U);
   EXPECT_EQ(o.platform.camera.seed, 7U);
-  EXPECT_EQ(o.world.Describe(), WorldOptions::Realistic().Describe());
+  EXPECT_EQ(o.world.Describe(), WorldOptions::Nominal().Describe());
 }
 
-TEST(LoopFlightTest, ThePredictiveControllerKeepsItsOwnGains) {
+TEST(LoopFlightTest, ThePredictiveControllerKeepsTheAgentsGains) {
   const LoopFlight flight{"aero1.jpg", 0, "predictive", "first-frame", 0.4, 1};
-  EXPECT_EQ(flight.Options(WorldOptions::Nominal(), 50).gains.p, ControllerGains{}.p);
+  EXPECT_EQ(flight.Options(AgentLoop(), WorldOptions::Nominal(), 50).gains.p, 0.7);
+}
+
+TEST(LoopFlightTest, EveryControllerFliesTheAgentsRateLimitDeadBandServosAndFrameRate) {
+  for (const std::string controller : {"predictive", "pid", "p"}) {
+    const ClosedLoopOptions o =
+        LoopFlight{"aero1.jpg", 0, controller, "first-frame", 1.2, 1}.Options(
+            AgentLoop(), WorldOptions::Nominal(), 50);
+    EXPECT_EQ(o.gains.rate_limit_deg_per_s, 90) << controller;
+    EXPECT_EQ(o.gains.dead_band_px, 1.5) << controller;
+    EXPECT_EQ(o.platform.pan.rate_limit_deg_per_frame, 4) << controller;
+    EXPECT_DOUBLE_EQ(o.frame_period_s, 1.0 / 30) << controller;
+  }
+}
+
+TEST(LoopPlanTest, IsValidRefusesAnAgentLoopThatIsNot) {
+  LoopPlan plan = SmallPlan();
+  plan.agent_loop.frame_period_s = 0;
+  std::string error;
+  EXPECT_FALSE(plan.IsValid(&error));
+  EXPECT_NE(error.find("frame period"), std::string::npos) << error;
+}
+
+TEST(LoopPlanTest, DescribeNamesTheAgentsRateLimitAndFrameRate) {
+  LoopPlan plan = SmallPlan();
+  plan.agent_loop = AgentLoop();
+  const std::string text = plan.Describe(2, 2);
+  EXPECT_NE(text.find("rate limit 90 deg/s"), std::string::npos) << text;
+  EXPECT_NE(text.find("30 frames/s"), std::string::npos) << text;
 }
 
 }  // namespace

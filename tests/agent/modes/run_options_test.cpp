@@ -1,0 +1,57 @@
+#include "agent/modes/run_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include "agent/agent.hpp"
+
+namespace kapfix::agent {
+namespace {
+
+TEST(MakeClosedLoopOptionsTest, CarriesTheGainsRateLimitFrameRateAndServoSpeed) {
+  AgentConfig config = BuiltInConfig(MotionKind::kKite);
+  config.gains.set_rate_limit_deg_per_s(75.0F);
+  config.gains.set_p(0.6F);
+  config.camera.fps = 50;
+  config.servo.pan.limits.max_rate_deg_per_s = 200;
+  const ClosedLoopOptions o = MakeClosedLoopOptions(config);
+  EXPECT_DOUBLE_EQ(o.gains.rate_limit_deg_per_s, 75.0);
+  EXPECT_NEAR(o.gains.p, 0.6, 1e-6);
+  EXPECT_EQ(o.controller, "predictive");
+  EXPECT_DOUBLE_EQ(o.frame_period_s, 1.0 / 50);
+  EXPECT_DOUBLE_EQ(o.platform.pan.rate_limit_deg_per_frame, 200.0 / 50);
+  std::string error;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+}
+
+TEST(MakeClosedLoopOptionsTest, CarriesTheSearchAndTheFreeSwingsFirstDeadline) {
+  AgentConfig config = BuiltInConfig(MotionKind::kKite);
+  config.search.patch_px = 60;
+  config.search.strategy = "h21";
+  config.search.swing_frames = 1000;
+  config.search.swing_seconds = 5;  // 150 frames at 30 frames/s: the first deadline
+  const ClosedLoopOptions o = MakeClosedLoopOptions(config);
+  EXPECT_EQ(o.fixation.patch_size, 60);
+  EXPECT_EQ(o.strategy, "h21");
+  EXPECT_EQ(o.ssp_frames, 150);
+}
+
+TEST(MakeClosedLoopOptionsTest, TheWorldIsLeftForTheEvaluationToApplyOnce) {
+  AgentConfig config = BuiltInConfig(MotionKind::kKite);
+  config.simulation.world = WorldOptions::Realistic();
+  const ClosedLoopOptions o = MakeClosedLoopOptions(config);
+  EXPECT_EQ(o.world.Describe(), WorldOptions::Realistic().Describe());
+  const SimulatedPlatformOptions nominal = MakePlatformOptions(BuiltInConfig(MotionKind::kKite));
+  EXPECT_EQ(o.platform.pan.latency_max_frames, nominal.pan.latency_max_frames);
+  EXPECT_EQ(o.platform.frame_drop_rate, nominal.frame_drop_rate);
+  EXPECT_DOUBLE_EQ(o.platform.px_per_deg, nominal.px_per_deg);
+}
+
+TEST(MakePlatformOptionsTest, AppliesTheConfiguredWorld) {
+  AgentConfig config = BuiltInConfig(MotionKind::kKite);
+  config.simulation.world.latency_jitter = 3;
+  EXPECT_GT(MakePlatformOptions(config).pan.latency_max_frames,
+            MakePlatformOptions(BuiltInConfig(MotionKind::kKite)).pan.latency_max_frames);
+}
+
+}  // namespace
+}  // namespace kapfix::agent
