@@ -11,13 +11,16 @@ namespace kapfix::bench {
 namespace {
 
 // [s] CPU time of one simulated frame and of one flight's set-up, measured on the project's
-// 2-core machine (session 8, `--jobs 2`, 2 scenes × the 12 worlds × 3 controllers, 1 seed,
-// nice under other load): 108 flights from the first frame took 95.5 s at 500 frames and
-// 10.0 s at 50 (1.76 ms per frame, 5 ms per flight); the same 108 with the 72 main flights
-// after SSP took 61 s more for their 72 × 300 free-swing frames (2.8 ms each: SSP scores every
-// slice). A job per core turns CPU time into wall-clock time; other load stretches it.
-constexpr double kSecondsPerFixatedFrame = 0.00176;
-constexpr double kSecondsPerSspFrame = 0.0028;
+// 2-core machine (session 11, `--jobs 2`, nice, the agent's built-in loop with its 640×480
+// frames): 552 flights of 500 frames (4 worlds, 10 scenes, 3 seeds, both starts, predictive
+// and P, with a 72-flight sweep), 240 of them after SSP's 300-frame free swing, took 19.5 min:
+// 6.0 ms per fixated frame if a free-swing frame costs 1.6 × as much (SSP scores every slice,
+// as measured in session 8). The cost grows with the frame's area (rendering the simulated
+// view): session 8's 300×300 frames cost 1.76 ms, 3.4 × less for 3.4 × fewer pixels. A job per
+// core turns CPU time into wall-clock time; other load stretches it.
+constexpr double kSecondsPerFixatedFrame = 0.0060;
+constexpr double kSecondsPerSspFrame = 0.0095;
+constexpr double kMeasuredFrameArea = 640.0 * 480.0;  // [px²] of those figures
 constexpr double kSecondsPerFlight = 0.005;
 
 bool Known(const std::vector<std::string>& names, const std::string& name) {
@@ -136,13 +139,15 @@ std::size_t LoopPlan::MainCount() const {
 }
 
 double LoopPlan::EstimatedSeconds(int jobs, int cores) const {
-  const double per_flight = kSecondsPerFlight + kSecondsPerFixatedFrame * frames;
+  const cv::Size frame = agent_loop.platform.camera.frame_size;
+  const double area = static_cast<double>(frame.width) * frame.height / kMeasuredFrameArea;
+  const double per_flight = kSecondsPerFlight + kSecondsPerFixatedFrame * area * frames;
   const double ssp_flights = static_cast<double>(MainCount()) *
                              static_cast<double>(std::count(starts.begin(), starts.end(), "ssp")) /
                              static_cast<double>(starts.size());
   const double ssp_frames = agent_loop.ssp_frames;
   const double busy = static_cast<double>(SweepCount() + MainCount()) * per_flight +
-                      ssp_flights * ssp_frames * kSecondsPerSspFrame;
+                      ssp_flights * ssp_frames * kSecondsPerSspFrame * area;
   // Flights beyond the cores share them; a job per core is the most that helps.
   return busy / std::max(1, std::min(jobs, cores));
 }

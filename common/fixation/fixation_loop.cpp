@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <utility>
 
@@ -54,7 +55,7 @@ bool FixationOptions::IsValid(std::string* error) const {
   if (!std::isfinite(follow_decay_frames) || follow_decay_frames <= 0) {
     return fail("follow decay must be > 0 frames, got " + std::to_string(follow_decay_frames));
   }
-  return true;
+  return roll.IsValid(error);
 }
 
 FixationLoop::FixationLoop(FixationOptions options, std::shared_ptr<const SearchStrategy> strategy,
@@ -158,6 +159,28 @@ void FixationLoop::StoreExposure(const cv::Mat& plane) {
   exposure_ = options_.compensate_exposure ? ExposureCompensation(plane) : ExposureCompensation();
 }
 
+bool FixationLoop::HoldsView(const cv::Mat& plane, const cv::Point2d& displacement,
+                             Step* step) const {
+  const double patch_px = std::hypot(displacement.x, displacement.y);
+  if (!options_.roll_aware_claim) return patch_px <= options_.off_target_px;
+  // [px] the patch centre from the frame centre, and the most a roll in range moves it
+  const cv::Point2d offset(patch_.x + 0.5 * (patch_.width - 1) - 0.5 * (plane.cols - 1),
+                           patch_.y + 0.5 * (patch_.height - 1) - 0.5 * (plane.rows - 1));
+  const double reach =
+      std::hypot(offset.x, offset.y) * std::sin(options_.roll.max_deg * std::numbers::pi / 180);
+  // No roll in range could carry the centre across the line: the patch decides.
+  if (std::abs(patch_px - options_.off_target_px) >= reach) {
+    return patch_px <= options_.off_target_px;
+  }
+  const std::optional<PatchRoll> roll =
+      ReadPatchRoll(reference_->image(), patch_, plane, step->match.displacement, options_.roll);
+  if (!roll) return patch_px <= options_.off_target_px;  // the patch alone
+  step->roll_deg = roll->roll_rad * 180 / std::numbers::pi;
+  const cv::Point2d centre =
+      OnSearchedAxes(CentreDisplacement(roll->displacement, roll->roll_rad, offset));
+  return std::hypot(centre.x, centre.y) <= options_.off_target_px;
+}
+
 cv::Point2d FixationLoop::OnSearchedAxes(cv::Point2d displacement) const {
   if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
   if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
@@ -204,7 +227,7 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
 
   // Follow has no stored view to be on or off: its claim is the trusted lock alone.
   const bool held_view = options_.reference == FixationOptions::Reference::kPrevious ||
-                         std::hypot(displacement.x, displacement.y) <= options_.off_target_px;
+                         (step.trusted && HoldsView(plane, displacement, &step));
   step.off_target = step.lock_lost || !step.trusted || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     displacement = FollowStep(plane, displacement);

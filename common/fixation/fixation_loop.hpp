@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -7,6 +8,7 @@
 
 #include "common/control/controller.hpp"
 #include "common/control/lens_calibration.hpp"
+#include "common/fixation/patch_roll.hpp"
 #include "common/image/color_channel.hpp"
 #include "common/matching/exposure_compensation.hpp"
 #include "common/matching/reference_patch.hpp"
@@ -57,6 +59,14 @@ struct FixationOptions {
   // Below the report's 10 px gross threshold by the matcher's miss (0.1-0.5 px RMS in the
   // simulated worlds) and a margin, so that a frame claimed on target is not 10.3 px off.
   double off_target_px = 8;
+  // The claim allows for roll (stored reference only): a patch held r px from the frame
+  // centre leaves the centre roll × r off, so when a roll within roll.max_deg could carry the
+  // centre across off_target_px, the roll is read from the patch (ReadPatchRoll) and the
+  // centre's displacement (CentreDisplacement) is judged instead of the patch's: either way,
+  // a patch held beside a centre that is not, or a patch off beside a centre held. Off: the
+  // patch's displacement alone.
+  bool roll_aware_claim = true;
+  PatchRollOptions roll;
   // Scale each frame to the stored reference's mean brightness before the search
   // (ExposureCompensation): an auto-exposure step between the reference and the frame
   // otherwise pulls the SSD minimum off the view while the match stays confident.
@@ -113,6 +123,9 @@ class FixationLoop {
     // The loop does not claim to hold the view: the lock is lost, this frame's match is not
     // trusted, or it measures the view farther than off_target_px (issue 9's honest lock).
     bool off_target = true;
+    // [deg] the roll read from the patch for the claim above; NaN when it was not needed
+    // (the patch's displacement alone decided) or could not be read.
+    double roll_deg = std::numeric_limits<double>::quiet_NaN();
     double exposure_gain = 1;  // [1] the factor the frame was scaled by before the search
     double loop_us = 0;        // [µs] wall time of this Process call
     // What the controller believes after this frame (online deg/px, forecast weight), for
@@ -139,6 +152,9 @@ class FixationLoop {
   void UpdateLock(bool stored, Step* step);
   // Brightness of the reference plane `plane` for the next frames' compensation.
   void StoreExposure(const cv::Mat& plane);
+  // Whether the view is held at the patch's measured `displacement` [px] (stored reference):
+  // within off_target_px, the roll allowed for (roll_aware_claim); sets step->roll_deg.
+  bool HoldsView(const cv::Mat& plane, const cv::Point2d& displacement, Step* step) const;
   // [px] `displacement` with the axis that is not searched set to 0.
   cv::Point2d OnSearchedAxes(cv::Point2d displacement) const;
   // Follow (previous-frame reference): adds `frame_step` [px] to the leaky sum, makes

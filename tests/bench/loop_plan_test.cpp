@@ -157,6 +157,14 @@ TEST(LoopFlightTest, EveryControllerFliesTheAgentsRateLimitDeadBandServosAndFram
   }
 }
 
+TEST(LoopPlanTest, EstimateGrowsWithTheAgentsFrameArea) {
+  LoopPlan plan = SmallPlan();
+  plan.agent_loop.platform.camera.frame_size = {320, 240};
+  const double quarter = plan.EstimatedSeconds(2, 2);
+  plan.agent_loop.platform.camera.frame_size = {640, 480};
+  EXPECT_GT(plan.EstimatedSeconds(2, 2), 3.5 * quarter);
+}
+
 TEST(LoopPlanTest, IsValidRefusesAnAgentLoopThatIsNot) {
   LoopPlan plan = SmallPlan();
   plan.agent_loop.frame_period_s = 0;

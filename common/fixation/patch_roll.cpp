@@ -1,0 +1,162 @@
+#include "common/fixation/patch_roll.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
+
+namespace kapfix {
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+// One channel of 32-bit floats (the mean of three).
+cv::Mat Grey32(const cv::Mat& plane) {
+  cv::Mat f;
+  plane.convertTo(f, CV_32F);
+  if (f.channels() == 3) cv::transform(f, f, cv::Matx13f(1.F / 3, 1.F / 3, 1.F / 3));
+  return f;
+}
+
+// [px] how far the refinement may move the displacement in all
+constexpr double kRefineReachPx = 2;
+
+// The parabola's vertex through three equally spaced costs, in steps from the middle one
+// (−0.5…0.5 when the middle is the least); 0 when they do not bend upwards.
+double Vertex(double before, double at, double after) {
+  const double curvature = before - 2 * at + after;
+  return curvature > 0 ? 0.5 * (before - after) / curvature : 0.0;
+}
+
+// The reference patch and the current frame around where it is seen, as floats, and the SSD
+// between the patch turned by an angle and the frame at a displacement.
+class RollFit {
+ public:
+  RollFit(cv::Mat reference, cv::Mat around, cv::Point2d around_origin, cv::Point2d patch_centre,
+          int margin)
+      : reference_(std::move(reference)),
+        around_(std::move(around)),
+        around_origin_(around_origin),
+        patch_centre_(patch_centre),
+        inside_(margin, margin, reference_.cols - 2 * margin, reference_.rows - 2 * margin) {}
+
+  bool usable() const { return inside_.width >= 4 && inside_.height >= 4; }
+
+  cv::Mat Turned(double deg) const {
+    const cv::Point2f centre(0.5F * static_cast<float>(reference_.cols - 1),
+                             0.5F * static_cast<float>(reference_.rows - 1));
+    // getRotationMatrix2D turns counter-clockwise on the screen for a positive angle (y down):
+    // content from +x towards −y. Ours is +x towards +y, hence −deg.
+    cv::Mat turned;
+    cv::warpAffine(reference_, turned, cv::getRotationMatrix2D(centre, -deg, 1.0),
+                   reference_.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    return turned;
+  }
+
+  cv::Mat Seen(const cv::Point2d& displacement) const {
+    cv::Mat seen;
+    cv::getRectSubPix(around_, reference_.size(), patch_centre_ + displacement - around_origin_,
+                      seen, CV_32F);
+    return seen;
+  }
+
+  double Cost(const cv::Mat& turned, const cv::Mat& seen) const {
+    return cv::norm(turned(inside_), seen(inside_), cv::NORM_L2SQR);
+  }
+
+ private:
+  cv::Mat reference_;
+  cv::Mat around_;
+  cv::Point2d around_origin_;
+  cv::Point2d patch_centre_;
+  cv::Rect inside_;
+};
+
+// [deg] The best angle of `first + k·step` for k in [0, count), refined by a parabola.
+double BestAngle(const RollFit& fit, const cv::Mat& seen, double first, double step, int count) {
+  std::vector<double> cost;
+  for (int k = 0; k < count; ++k) cost.push_back(fit.Cost(fit.Turned(first + k * step), seen));
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < cost.size(); ++k) {
+    if (cost[k] < cost[best]) best = k;
+  }
+  double offset = 0;
+  if (best > 0 && best + 1 < cost.size()) {
+    offset = Vertex(cost[best - 1], cost[best], cost[best + 1]);
+  }
+  return first + (static_cast<double>(best) + offset) * step;
+}
+
+}  // namespace
+
+bool PatchRollOptions::IsValid(std::string* error) const {
+  const auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!(max_deg > 0 && max_deg <= 45)) return fail("roll range must be in (0, 45] deg");
+  if (!(step_deg > 0 && step_deg <= max_deg)) return fail("roll step must be in (0, max] deg");
+  if (margin_px < 0) return fail("roll margin must be ≥ 0 px");
+  return true;
+}
+
+std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv::Rect& patch,
+                                       const cv::Mat& current_plane,
+                                       const cv::Point2d& displacement,
+                                       const PatchRollOptions& options) {
+  if ((patch & cv::Rect(0, 0, reference_plane.cols, reference_plane.rows)) != patch) {
+    return std::nullopt;
+  }
+  // The frame around the displaced patch, with room for the refinement and interpolation.
+  const int room = static_cast<int>(std::ceil(kRefineReachPx)) + 2;
+  const cv::Rect around(static_cast<int>(std::floor(patch.x + displacement.x)) - room,
+                        static_cast<int>(std::floor(patch.y + displacement.y)) - room,
+                        patch.width + 2 * room + 1, patch.height + 2 * room + 1);
+  if ((around & cv::Rect(0, 0, current_plane.cols, current_plane.rows)) != around) {
+    return std::nullopt;
+  }
+  const RollFit fit(
+      Grey32(reference_plane(patch)), Grey32(current_plane(around)),
+      cv::Point2d(around.x, around.y),
+      cv::Point2d(patch.x + 0.5 * (patch.width - 1), patch.y + 0.5 * (patch.height - 1)),
+      options.margin_px);
+  if (!fit.usable()) return std::nullopt;
+
+  const int steps = static_cast<int>(std::floor(options.max_deg / options.step_deg));
+  PatchRoll read{0, displacement};
+  double deg = BestAngle(fit, fit.Seen(displacement), -steps * options.step_deg, options.step_deg,
+                         2 * steps + 1);
+  constexpr int kPasses = 3;  // angle and displacement in turn; each pass halves the step
+  double step = options.step_deg;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    const cv::Mat turned = fit.Turned(deg);
+    for (const cv::Point2d axis : {cv::Point2d(0.5, 0), cv::Point2d(0, 0.5)}) {
+      const double at = fit.Cost(turned, fit.Seen(read.displacement));
+      const double before = fit.Cost(turned, fit.Seen(read.displacement - axis));
+      const double after = fit.Cost(turned, fit.Seen(read.displacement + axis));
+      read.displacement += std::clamp(Vertex(before, at, after), -1.0, 1.0) * axis;
+    }
+    const cv::Point2d moved = read.displacement - displacement;
+    if (std::abs(moved.x) > kRefineReachPx || std::abs(moved.y) > kRefineReachPx) {
+      return std::nullopt;  // the patch is not near where the search saw it
+    }
+    step *= 0.5;
+    deg = BestAngle(fit, fit.Seen(read.displacement), deg - 2 * step, step, 5);
+  }
+  read.roll_rad = deg * kRadPerDeg;
+  return read;
+}
+
+cv::Point2d CentreDisplacement(const cv::Point2d& displacement, double roll_rad,
+                               const cv::Point2d& patch_offset) {
+  // Content at r turns to R·r: (R − I)·r ≈ roll·(−r_y, r_x) for a small roll; the exact form
+  // costs nothing.
+  const double c = std::cos(roll_rad), s = std::sin(roll_rad);
+  const cv::Point2d turn((c - 1) * patch_offset.x - s * patch_offset.y,
+                         s * patch_offset.x + (c - 1) * patch_offset.y);
+  return displacement - turn;
+}
+
+}  // namespace kapfix
