@@ -154,15 +154,22 @@ double LoopPlan::EstimatedSeconds(int jobs, int cores) const {
 
 std::string LoopPlan::DescribeAgentLoop() const {
   const ClosedLoopOptions& a = agent_loop;
+  // The gains by their settings' names (ControllerGains::VisitFields), so that a gain added
+  // there shows here without being named here.
+  std::string gains;
+  ControllerGains copy = a.gains;
+  copy.VisitFields([&gains](const char* name, double value) {
+    char field[64];
+    std::snprintf(field, sizeof field, "%s%s %g", gains.empty() ? "" : ", ", name, value);
+    gains += field;
+  });
   char line[320];
-  std::snprintf(
-      line, sizeof line,
-      "the agent's loop: %s controller, P %.2f, rate limit %.0f deg/s, dead band %.1f px; "
-      "%.0f frames/s; servos %.1f deg/frame; %s search on a %d px patch; SSP's free "
-      "swing %d frames\n",
-      a.controller.c_str(), a.gains.p, a.gains.rate_limit_deg_per_s, a.gains.dead_band_px,
-      1.0 / a.frame_period_s, a.platform.pan.rate_limit_deg_per_frame, a.strategy.c_str(),
-      a.fixation.patch_size, a.ssp_frames);
+  std::snprintf(line, sizeof line,
+                "the agent's loop: %s controller (%s); %.0f frames/s; servos %.1f deg/frame; %s "
+                "search on a %d px patch; SSP's free swing %d frames\n",
+                a.controller.c_str(), gains.c_str(), 1.0 / a.frame_period_s,
+                a.platform.pan.rate_limit_deg_per_frame, a.strategy.c_str(), a.fixation.patch_size,
+                a.ssp_frames);
   return line;
 }
 

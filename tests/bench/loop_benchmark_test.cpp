@@ -76,7 +76,8 @@ TEST(LoopBenchmarkTest, ByDefaultItFliesTheAgentsBuiltInLoopWithItsRateLimit) {
   const ProcessOutcome outcome = RunLoopBench(dir.path(), "--dry-run --out out");
   ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
   // settings.proto's initial rate limit, the agent's 30 frames/s and 120 deg/s servos.
-  EXPECT_NE(outcome.out.find("predictive controller, P 1.00, rate limit 90 deg/s"),
+  EXPECT_NE(outcome.out.find(
+                "predictive controller (p 1, i 0, d 0, dead_band_px 0.5, rate_limit_deg_per_s 90)"),
             std::string::npos)
       << outcome.out;
   EXPECT_NE(outcome.out.find("30 frames/s; servos 4.0 deg/frame"), std::string::npos)
@@ -88,7 +89,9 @@ TEST(LoopBenchmarkTest, ConfigFliesThatConfigurationsLoop) {
   const ProcessOutcome outcome = RunLoopBench(
       dir.path(), "--dry-run --out out --config " KAPFIX_SOURCE_DIR "/resources/kite.json");
   ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
-  EXPECT_NE(outcome.out.find("P 0.80, rate limit 120 deg/s"), std::string::npos) << outcome.out;
+  EXPECT_NE(outcome.out.find("p 0.8, i 0, d 0, dead_band_px 0.5, rate_limit_deg_per_s 120"),
+            std::string::npos)
+      << outcome.out;
   EXPECT_NE(outcome.out.find("60 frames/s; servos 2.5 deg/frame"), std::string::npos)
       << outcome.out;
 }

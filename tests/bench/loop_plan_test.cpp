@@ -177,7 +177,7 @@ TEST(LoopPlanTest, DescribeNamesTheAgentsRateLimitAndFrameRate) {
   LoopPlan plan = SmallPlan();
   plan.agent_loop = AgentLoop();
   const std::string text = plan.Describe(2, 2);
-  EXPECT_NE(text.find("rate limit 90 deg/s"), std::string::npos) << text;
+  EXPECT_NE(text.find("rate_limit_deg_per_s 90"), std::string::npos) << text;
   EXPECT_NE(text.find("30 frames/s"), std::string::npos) << text;
 }
 
