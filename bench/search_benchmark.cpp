@@ -1,12 +1,16 @@
 // Google Benchmark of one search on a fixed pair of 300×300 frames (aero1.jpg moved by 37 px),
 // per strategy and sampling, next to cv::matchTemplate on the same pair. Complements
-// kapfix-bench-matcher (which runs whole swings) with stable per-call figures for profiling.
+// kapfix-bench-matcher (which runs whole swings) with stable per-call figures for profiling,
+// and the roll read that the off-target claim adds for a patch off the frame centre.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 
 #include "bench/peer_matchers.hpp"
+#include "common/fixation/patch_roll.hpp"
 #include "common/image/color_channel.hpp"
 #include "common/search/search_strategy.hpp"
 
@@ -53,12 +57,25 @@ void BM_MatchTemplate(benchmark::State& state) {
   RunSearch(state, MatchTemplatePeer(), {SamplingKind::kAll});
 }
 
+// The roll read for the off-target claim (FixationLoop, a patch off the frame centre): what it
+// adds to a frame's search, on the same pair (no roll, so it must read ~0).
+void BM_ReadPatchRoll(benchmark::State& state) {
+  const FramePair& pair = Pair();
+  std::optional<PatchRoll> read;
+  for (auto _ : state) {
+    read = ReadPatchRoll(pair.reference, cv::Rect(100, 100, 100, 100), pair.current, {37, 0}, {});
+    benchmark::DoNotOptimize(read);
+  }
+  if (!read || std::abs(read->roll_rad) > 0.005) state.SkipWithError("wrong roll");
+}
+
 BENCHMARK_CAPTURE(BM_Strategy, all_all, "all", SamplingOptions{SamplingKind::kAll});
 BENCHMARK_CAPTURE(BM_Strategy, h23_random10, "h23", SamplingOptions{SamplingKind::kRandom, 0.1});
 BENCHMARK_CAPTURE(BM_Strategy, h15_random10, "h15", SamplingOptions{SamplingKind::kRandom, 0.1});
 BENCHMARK_CAPTURE(BM_Strategy, pyr_random10, "pyr", SamplingOptions{SamplingKind::kRandom, 0.1});
 BENCHMARK_CAPTURE(BM_Strategy, h23_all, "h23", SamplingOptions{SamplingKind::kAll});
 BENCHMARK(BM_MatchTemplate);
+BENCHMARK(BM_ReadPatchRoll);
 
 }  // namespace
 }  // namespace kapfix::bench

@@ -30,17 +30,21 @@ double Vertex(double before, double at, double after) {
   return curvature > 0 ? 0.5 * (before - after) / curvature : 0.0;
 }
 
-// The reference patch and the current frame around where it is seen, as floats, and the SSD
-// between the patch turned by an angle and the frame at a displacement.
+// The reference patch and the current frame around where it is seen, reduced to floats at
+// 1/reduce of the size, and the SSD between the patch turned by an angle and the frame at a
+// displacement [full-size px].
 class RollFit {
  public:
-  RollFit(cv::Mat reference, cv::Mat around, cv::Point2d around_origin, cv::Point2d patch_centre,
-          int margin)
-      : reference_(std::move(reference)),
-        around_(std::move(around)),
+  RollFit(const cv::Mat& reference, const cv::Mat& around, cv::Point around_origin,
+          cv::Point2d patch_centre, int reduce, int margin)
+      : reference_(Reduced(reference, reduce)),
+        around_(Reduced(around, reduce)),
         around_origin_(around_origin),
         patch_centre_(patch_centre),
-        inside_(margin, margin, reference_.cols - 2 * margin, reference_.rows - 2 * margin) {}
+        reduce_(reduce) {
+    const int m = (margin + reduce - 1) / reduce;
+    inside_ = cv::Rect(m, m, reference_.cols - 2 * m, reference_.rows - 2 * m);
+  }
 
   bool usable() const { return inside_.width >= 4 && inside_.height >= 4; }
 
@@ -56,8 +60,13 @@ class RollFit {
   }
 
   cv::Mat Seen(const cv::Point2d& displacement) const {
+    // A reduced pixel i covers full-size pixels reduce·i … reduce·i + reduce − 1 (INTER_AREA).
+    const double half = 0.5 * (reduce_ - 1);
+    const cv::Point2d full = patch_centre_ + displacement - cv::Point2d(around_origin_);
     cv::Mat seen;
-    cv::getRectSubPix(around_, reference_.size(), patch_centre_ + displacement - around_origin_,
+    cv::getRectSubPix(around_, reference_.size(),
+                      cv::Point2f(static_cast<float>((full.x - half) / reduce_),
+                                  static_cast<float>((full.y - half) / reduce_)),
                       seen, CV_32F);
     return seen;
   }
@@ -67,10 +76,20 @@ class RollFit {
   }
 
  private:
+  static cv::Mat Reduced(const cv::Mat& plane, int reduce) {
+    cv::Mat grey = Grey32(plane);
+    if (reduce == 1) return grey;
+    cv::Mat small;
+    cv::resize(grey, small, cv::Size(plane.cols / reduce, plane.rows / reduce), 0, 0,
+               cv::INTER_AREA);
+    return small;
+  }
+
   cv::Mat reference_;
   cv::Mat around_;
-  cv::Point2d around_origin_;
+  cv::Point around_origin_;
   cv::Point2d patch_centre_;
+  int reduce_;
   cv::Rect inside_;
 };
 
@@ -99,6 +118,7 @@ bool PatchRollOptions::IsValid(std::string* error) const {
   if (!(max_deg > 0 && max_deg <= 45)) return fail("roll range must be in (0, 45] deg");
   if (!(step_deg > 0 && step_deg <= max_deg)) return fail("roll step must be in (0, max] deg");
   if (margin_px < 0) return fail("roll margin must be ≥ 0 px");
+  if (reduce < 1 || reduce > 8) return fail("roll reduction must be 1…8");
   return true;
 }
 
@@ -109,18 +129,22 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
   if ((patch & cv::Rect(0, 0, reference_plane.cols, reference_plane.rows)) != patch) {
     return std::nullopt;
   }
-  // The frame around the displaced patch, with room for the refinement and interpolation.
-  const int room = static_cast<int>(std::ceil(kRefineReachPx)) + 2;
+  // The frame around the displaced patch, with room for the refinement and interpolation, a
+  // whole number of reduced pixels wide.
+  const int k = options.reduce;
+  const int room = k * (static_cast<int>(std::ceil(kRefineReachPx / k)) + 2);
   const cv::Rect around(static_cast<int>(std::floor(patch.x + displacement.x)) - room,
                         static_cast<int>(std::floor(patch.y + displacement.y)) - room,
-                        patch.width + 2 * room + 1, patch.height + 2 * room + 1);
+                        patch.width + 2 * room + k, patch.height + 2 * room + k);
   if ((around & cv::Rect(0, 0, current_plane.cols, current_plane.rows)) != around) {
     return std::nullopt;
   }
+  // A patch a whole number of reduced pixels wide, centred where the patch is.
+  const cv::Rect fitted(patch.x + (patch.width % k) / 2, patch.y + (patch.height % k) / 2,
+                        patch.width - patch.width % k, patch.height - patch.height % k);
   const RollFit fit(
-      Grey32(reference_plane(patch)), Grey32(current_plane(around)),
-      cv::Point2d(around.x, around.y),
-      cv::Point2d(patch.x + 0.5 * (patch.width - 1), patch.y + 0.5 * (patch.height - 1)),
+      reference_plane(fitted), current_plane(around), around.tl(),
+      cv::Point2d(fitted.x + 0.5 * (fitted.width - 1), fitted.y + 0.5 * (fitted.height - 1)), k,
       options.margin_px);
   if (!fit.usable()) return std::nullopt;
 
@@ -132,7 +156,8 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
   double step = options.step_deg;
   for (int pass = 0; pass < kPasses; ++pass) {
     const cv::Mat turned = fit.Turned(deg);
-    for (const cv::Point2d axis : {cv::Point2d(0.5, 0), cv::Point2d(0, 0.5)}) {
+    // Half a reduced pixel each way: the parabola's three points.
+    for (const cv::Point2d axis : {cv::Point2d(0.5 * k, 0), cv::Point2d(0, 0.5 * k)}) {
       const double at = fit.Cost(turned, fit.Seen(read.displacement));
       const double before = fit.Cost(turned, fit.Seen(read.displacement - axis));
       const double after = fit.Cost(turned, fit.Seen(read.displacement + axis));

@@ -83,7 +83,7 @@ TEST(PatchRollTest, NothingWhenTheDisplacedPatchLeavesTheFrame) {
   EXPECT_FALSE(ReadPatchRoll(view, patch, view, {0, 200}, {}).has_value());
 }
 
-TEST(PatchRollTest, IsValidRefusesAnEmptyRangeOrAStepBeyondIt) {
+TEST(PatchRollTest, IsValidRefusesAnEmptyRangeAStepBeyondItOrNoReduction) {
   PatchRollOptions o;
   std::string error;
   EXPECT_TRUE(o.IsValid(&error)) << error;
@@ -91,6 +91,9 @@ TEST(PatchRollTest, IsValidRefusesAnEmptyRangeOrAStepBeyondIt) {
   EXPECT_FALSE(o.IsValid(&error));
   o = {};
   o.step_deg = 2 * o.max_deg;
+  EXPECT_FALSE(o.IsValid(&error));
+  o = {};
+  o.reduce = 0;
   EXPECT_FALSE(o.IsValid(&error));
 }
 
