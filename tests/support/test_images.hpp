@@ -42,4 +42,22 @@ inline cv::Mat Translated(const cv::Mat& image, int dx, int dy) {
   return moved;
 }
 
+// A `frame`-sized view of an opencv-doc photo centred on the photo's centre, its content turned
+// by `roll_deg` about the view's centre (from +x towards +y: clockwise on the screen) and then
+// shifted by `shift` [px]: a camera that rolled and moved. BGR.
+inline cv::Mat RolledView(const std::string& name, cv::Size frame, double roll_deg,
+                          cv::Point2d shift) {
+  const cv::Mat photo = LoadOpenCvPhoto(name);
+  const cv::Point2f c(0.5F * static_cast<float>(photo.cols - 1),
+                      0.5F * static_cast<float>(photo.rows - 1));
+  cv::Mat move = cv::getRotationMatrix2D(c, -roll_deg, 1.0);  // OpenCV's angle: +x towards −y
+  move.at<double>(0, 2) += shift.x;
+  move.at<double>(1, 2) += shift.y;
+  cv::Mat moved;
+  cv::warpAffine(photo, moved, move, photo.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  return moved(cv::Rect(static_cast<int>(c.x + 0.5F) - frame.width / 2,
+                        static_cast<int>(c.y + 0.5F) - frame.height / 2, frame.width, frame.height))
+      .clone();
+}
+
 }  // namespace kapfix::testing

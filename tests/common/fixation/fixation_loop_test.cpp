@@ -223,19 +223,9 @@ TEST(FixationLoopTest, AViewMeasuredBeyondTheOffTargetDistanceIsSaidOffTarget) {
   EXPECT_TRUE(far.off_target) << "but 20 px off is not a held view";
 }
 
-// aero1.jpg seen through a 640×480 frame, its content turned by `roll_deg` about the frame
-// centre (+x towards +y) and shifted by `shift_x` [px].
+// aero1.jpg seen through a 640×480 frame, rolled by `roll_deg` and shifted by `shift_x` [px].
 cv::Mat RolledView(double roll_deg, double shift_x) {
-  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
-  const cv::Point2f c(0.5F * static_cast<float>(scene.cols - 1),
-                      0.5F * static_cast<float>(scene.rows - 1));
-  cv::Mat move = cv::getRotationMatrix2D(c, -roll_deg, 1.0);  // OpenCV's angle: +x towards −y
-  move.at<double>(0, 2) += shift_x;
-  cv::Mat moved;
-  cv::warpAffine(scene, moved, move, scene.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-  return moved(cv::Rect(static_cast<int>(c.x + 0.5F) - 320, static_cast<int>(c.y + 0.5F) - 240, 640,
-                        480))
-      .clone();
+  return testing::RolledView("aero1.jpg", {640, 480}, roll_deg, {shift_x, 0});
 }
 
 // Issue 9's honest lock under roll: slice 8's patch sits ~160 px below the frame centre, so a

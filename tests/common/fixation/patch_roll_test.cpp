@@ -17,22 +17,12 @@ namespace {
 constexpr double kRadPerDeg = std::numbers::pi / 180;
 const cv::Size kFrame{640, 480};
 
-// A frame-sized view of aero1.jpg centred on its centre, with the content turned by
-// `roll_rad` about the view's centre (+x towards +y) and then shifted by `shift` [px].
+// aero1.jpg through a kFrame-sized view, rolled by `roll_rad` (+x towards +y) about the view's
+// centre and shifted by `shift` [px]; grey.
 cv::Mat View(double roll_rad, cv::Point2d shift) {
-  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
-  const cv::Point2d c(0.5 * (scene.cols - 1), 0.5 * (scene.rows - 1));
-  const double co = std::cos(roll_rad), si = std::sin(roll_rad);
-  // Content at p goes to c + R(p − c) + shift.
-  const cv::Matx23d move(co, -si, c.x - co * c.x + si * c.y + shift.x,  //
-                         si, co, c.y - si * c.x - co * c.y + shift.y);
-  cv::Mat moved;
-  cv::warpAffine(scene, moved, cv::Mat(move), scene.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
   cv::Mat grey;
-  cv::cvtColor(
-      moved(cv::Rect(static_cast<int>(c.x + 0.5) - kFrame.width / 2,
-                     static_cast<int>(c.y + 0.5) - kFrame.height / 2, kFrame.width, kFrame.height)),
-      grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(testing::RolledView("aero1.jpg", kFrame, roll_rad / kRadPerDeg, shift), grey,
+               cv::COLOR_BGR2GRAY);
   return grey;
 }
 
