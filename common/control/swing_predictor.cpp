@@ -14,6 +14,10 @@ constexpr double kOutlierSigmas = 4.0;  // AR residuals beyond this many σ (fro
 // [1] total least squares only while the model's weakest direction's singular value is this
 // many times the noise floor's (see FitRows): below, the swing is not clear of the noise.
 constexpr double kTlsSeparation = 2.0;
+// [1] F statistic beyond which the offset's drift is fitted: Akaike's criterion for one more
+// unknown (n·ln(RSS₀/RSS₁) > 2). Stricter tests (F > 10) kept out drifts that still spoilt
+// the swing's fit; fitting it always cost a steady swing's forecast ~20 %.
+constexpr double kDriftSignificance = 2.0;
 
 double Median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -21,19 +25,26 @@ double Median(std::vector<double> v) {
   return *mid;
 }
 
-// lags: one row per fitted sample, [x_t, x_{t−1}, …, x_{t−p}]. Returns a_1…a_p, c.
-std::optional<std::vector<double>> FitAutoregression(const Eigen::MatrixXd& lags) {
+// lags: one row per fitted sample, [x_t, x_{t−1}, …, x_{t−p}]; times: each row's t relative
+// to the offset's origin. Returns a_1…a_p, c, d (d = 0 unless drifting).
+std::optional<std::vector<double>> FitAutoregression(const Eigen::MatrixXd& lags,
+                                                     const Eigen::VectorXd& times, bool drifting) {
   const auto p = static_cast<int>(lags.cols()) - 1;
   const Eigen::Index rows = lags.rows();
+  // The offset c (and its drift d·t) is exact, not measured: it is eliminated by projecting
+  // every column onto what [1, t] cannot explain — centring, and the slope on t when drifting.
   const Eigen::RowVectorXd mean = lags.colwise().mean();
-  const Eigen::MatrixXd centred = lags.rowwise() - mean;
-  // Total least squares (the offset c exact, eliminated by centring): every column carries
-  // the same white measurement noise, and TLS, unlike least squares, does not shrink the
-  // coefficients for it — LS fits a 40-frame swing with pole radius 0.9975 under σ = 2 px as
-  // ~0.9 with a period anywhere from 39 to 160 frames. TLS needs the swing to stand clear
-  // of the noise: the p-th singular value (the weakest direction the model explains) well
-  // above the (p+1)-th (the noise floor). Otherwise — white jitter around an offset, a
-  // swing buried in noise — least squares, which fits that as the offset.
+  Eigen::MatrixXd centred = lags.rowwise() - mean;
+  const Eigen::VectorXd t = times.array() - times.mean();
+  const double tt = t.squaredNorm();
+  if (drifting && tt > 0) centred -= t * ((t.transpose() * centred) / tt);
+  // Total least squares: every column carries the same white measurement noise, and TLS,
+  // unlike least squares, does not shrink the coefficients for it — LS fits a 40-frame swing
+  // with pole radius 0.9975 under σ = 2 px as ~0.9 with a period anywhere from 39 to 160
+  // frames. TLS needs the swing to stand clear of the noise: the p-th singular value (the
+  // weakest direction the model explains) well above the (p+1)-th (the noise floor).
+  // Otherwise — white jitter around an offset, a swing buried in noise — least squares,
+  // which fits that as the offset.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred, Eigen::ComputeThinV);
   const Eigen::VectorXd& sv = svd.singularValues();
   Eigen::VectorXd a(p);
@@ -53,9 +64,22 @@ std::optional<std::vector<double>> FitAutoregression(const Eigen::MatrixXd& lags
     a = qr.solve(centred.col(0));
     if (!a.allFinite()) return std::nullopt;
   }
+  // The offset the coefficients leave: c + d·t through the residuals' mean and slope.
+  const Eigen::VectorXd residual = lags.col(0) - lags.rightCols(p) * a;
+  const double d = drifting && tt > 0 ? t.dot(residual) / tt : 0.0;
+  const double c = residual.mean() - d * times.mean();
   std::vector<double> w(a.data(), a.data() + p);
-  w.push_back(mean(0) - mean.tail(p).dot(a));  // c
+  w.push_back(c);
+  w.push_back(d);
   return w;
+}
+
+// Each row's x_t − (Σ a_i·x_{t−i} + c + d·t) for coefficients a_1…a_p, c, d.
+Eigen::VectorXd EquationResiduals(const Eigen::MatrixXd& lags, const Eigen::VectorXd& times,
+                                  const std::vector<double>& w) {
+  const auto p = static_cast<int>(lags.cols()) - 1;
+  const Eigen::Map<const Eigen::VectorXd> a(w.data(), p);
+  return (lags.col(0) - lags.rightCols(p) * a).array() - w[p] - w[p + 1] * times.array();
 }
 
 }  // namespace
@@ -107,6 +131,8 @@ void SwingPredictor::Clear() {
   history_.clear();
   spans_.clear();
   coefficients_.clear();
+  newest_time_ = -1;
+  offset_origin_ = 0;
   state_.clear();
   since_restart_ = 0;
   chosen_ = Forecaster::kPersistence;
@@ -116,17 +142,18 @@ void SwingPredictor::Clear() {
   coasted_ = 0;
 }
 
-double SwingPredictor::OneStep(const std::vector<double>& state) const {
+double SwingPredictor::OneStep(const std::vector<double>& state, long long time) const {
   const int p = options_.order;
-  double next = coefficients_[p];
+  double next =
+      coefficients_[p] + coefficients_[p + 1] * static_cast<double>(time - offset_origin_);
   for (int i = 0; i < p; ++i) next += coefficients_[i] * state[i];
   return next;
 }
 
-double SwingPredictor::ModelForecast(std::vector<double> state, int frames) const {
+double SwingPredictor::ModelForecast(std::vector<double> state, long long time, int frames) const {
   double next = state[0];
-  for (int k = 0; k < frames; ++k) {
-    next = OneStep(state);
+  for (int k = 1; k <= frames; ++k) {
+    next = OneStep(state, time + k);
     state.pop_back();
     state.insert(state.begin(), next);
   }
@@ -139,7 +166,7 @@ std::optional<double> SwingPredictor::Forecast(int frames) const {
   switch (chosen_) {
     case Forecaster::kModel:
       if (static_cast<int>(state_.size()) != options_.order) break;  // the state fit failed
-      return ModelForecast(state_, frames);
+      return ModelForecast(state_, newest_time_, frames);
     case Forecaster::kLinear:
       if (n < 2) break;
       return history_[n - 1] + frames * (history_[n - 1] - history_[n - 2]);
@@ -182,7 +209,7 @@ void SwingPredictor::Append(double x, bool imputed) {
   // Jump detection on the model's one-step innovation.
   since_restart_ = std::min(since_restart_ + 1, options_.window_frames);
   if (!imputed && !coefficients_.empty() && static_cast<int>(state_.size()) == p) {
-    const double innovation = x - OneStep(state_);
+    const double innovation = x - OneStep(state_, newest_time_ + 1);
     const double rms = std::sqrt(innovation_sq_);
     const bool jump =
         innovation_samples_ >= options_.smoothing_frames &&
@@ -198,6 +225,7 @@ void SwingPredictor::Append(double x, bool imputed) {
   }
 
   history_.push_back(x);
+  ++newest_time_;
   spans_.push_back(std::min(options_.smoothing_frames, since_restart_));
   while (static_cast<int>(history_.size()) > options_.window_frames) {
     history_.pop_front();
@@ -234,7 +262,7 @@ void SwingPredictor::Score() {
       // The forecast exactly as Forecast() would have made it at `known`: from the state
       // fitted through the model to the samples the state fit spanned then.
       const std::vector<double> state = StateAt(known, spans_[known]);
-      if (!state.empty()) add(Forecaster::kModel, ModelForecast(state, lead));
+      if (!state.empty()) add(Forecaster::kModel, ModelForecast(state, TimeOf(known), lead));
     }
   }
   chosen_ = Forecaster::kPersistence;
@@ -268,19 +296,34 @@ bool SwingPredictor::Refit() {
   coefficients_.clear();
   if (rows < 2 * (p + 1)) return false;
   Eigen::MatrixXd lags(rows, p + 1);
+  Eigen::VectorXd times(rows);  // relative to the newest sample, where c is the offset
   for (int r = 0; r < rows; ++r) {
     for (int i = 0; i <= p; ++i) lags(r, i) = history_[r + p - i];
+    times(r) = static_cast<double>(r + p - (n - 1));
   }
-  std::optional<std::vector<double>> w = FitAutoregression(lags);
+  // A drifting offset only where it explains more than its cost (an F test on the equation
+  // residuals): an extra unknown costs a steady swing's forecast precision. And only over a
+  // full window: over the lock-on's first samples a drift is hard to tell from the swing's
+  // start (fitted there, a calibration 1.3 × off under latency jitter rang for 100 frames).
+  std::optional<std::vector<double>> w = FitAutoregression(lags, times, false);
+  bool drifting = false;
+  if (options_.drifting_offset && n >= options_.window_frames) {
+    std::optional<std::vector<double>> wd = FitAutoregression(lags, times, true);
+    if (wd && w) {
+      const double steady = EquationResiduals(lags, times, *w).squaredNorm();
+      const double drift = EquationResiduals(lags, times, *wd).squaredNorm();
+      drifting = steady - drift > kDriftSignificance * drift / (rows - (p + 2));
+    } else {
+      drifting = wd.has_value();
+    }
+    if (drifting) w = std::move(wd);
+  }
   if (!w) return false;
   // One robust pass: refit without the equation residuals beyond kOutlierSigmas (a gust's
   // innovation, a bad match).
+  const Eigen::VectorXd residuals = EquationResiduals(lags, times, *w);
   std::vector<double> abs_res(static_cast<std::size_t>(rows));
-  for (int r = 0; r < rows; ++r) {
-    double e = lags(r, 0) - (*w)[p];
-    for (int i = 0; i < p; ++i) e -= (*w)[i] * lags(r, i + 1);
-    abs_res[r] = std::abs(e);
-  }
+  for (int r = 0; r < rows; ++r) abs_res[r] = std::abs(residuals(r));
   const double sigma = 1.4826 * Median(abs_res);
   if (sigma > 0) {
     std::vector<Eigen::Index> keep;
@@ -288,7 +331,9 @@ bool SwingPredictor::Refit() {
       if (abs_res[r] <= kOutlierSigmas * sigma) keep.push_back(r);
     }
     if (static_cast<int>(keep.size()) < rows && static_cast<int>(keep.size()) >= 2 * (p + 1)) {
-      if (auto w2 = FitAutoregression(lags(keep, Eigen::all))) w = std::move(w2);
+      if (auto w2 = FitAutoregression(lags(keep, Eigen::all), times(keep), drifting)) {
+        w = std::move(w2);
+      }
     }
   }
   // Reject fits that would grow without bound: the companion matrix's spectral radius.
@@ -298,6 +343,7 @@ bool SwingPredictor::Refit() {
   const double radius = companion.eigenvalues().cwiseAbs().maxCoeff();
   if (!(radius <= options_.max_spectral_radius)) return false;
   coefficients_ = std::move(*w);
+  offset_origin_ = newest_time_;
   return true;
 }
 
@@ -314,7 +360,9 @@ std::vector<double> SwingPredictor::StateAt(int newest, int span) const {
       basis(m, m) = 1.0;
       continue;
     }
-    forced(m) = coefficients_[p];
+    forced(m) =
+        coefficients_[p] +
+        coefficients_[p + 1] * static_cast<double>(TimeOf(newest + 1 - k + m) - offset_origin_);
     for (int i = 0; i < p; ++i) {
       basis.row(m) += coefficients_[i] * basis.row(m - 1 - i);
       forced(m) += coefficients_[i] * forced(m - 1 - i);

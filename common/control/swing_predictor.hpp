@@ -33,6 +33,13 @@ struct SwingPredictorOptions {
   // extrapolating jitter would amplify it.
   double linear_prior_min_step = 8.0;
   int max_coast_frames = 3;  // [frames] missing samples bridged by the model's own forecast
+  // The model's offset may drift linearly over the window (x_n = Σ a_i·x_{n−i} + c + d·n),
+  // fitted over a full window where it explains more than its cost (Akaike's criterion): a
+  // slow sway of the line under the swing moves the level the swing is around. Without it
+  // that drift is fitted as part of the swing — an AR(2) of a 40-frame swing under a 20 px
+  // sway of 7 swing periods forecast 2 frames ahead with 2.5 px RMS instead of 0.5, and
+  // white jitter under a slow sway was forecast worse than persistence.
+  bool drifting_offset = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -46,7 +53,8 @@ struct SwingPredictorOptions {
 //  - linear: the last step extrapolated (x_n + lead·(x_n − x_{n−1})), which carries the loop
 //    while the model has too few samples; until it has been scored it is preferred to
 //    persistence after a large step (a swinging platform moves smoothly);
-//  - model: x_n = a_1·x_{n−1} + … + a_p·x_{n−p} + c, fitted over the window by total least
+//  - model: x_n = a_1·x_{n−1} + … + a_p·x_{n−p} + c + d·n (d: the offset's drift, see
+//    SwingPredictorOptions::drifting_offset), fitted over the window by total least
 //    squares (unbiased under white measurement noise, where least squares shrinks the
 //    poles: a 40-frame swing of pole radius 0.9975 under σ = 2 px came out ~0.9 with periods
 //    wandering from 39 to hundreds of frames) — least squares only where no swing stands
@@ -90,7 +98,9 @@ class SwingPredictor {
   // [units] RMS error of a forecaster over its last scoring; NaN when it was not scored.
   double skill_rms(Forecaster forecaster) const;
   int jumps() const { return jumps_; }  // jumps detected since construction
-  const std::vector<double>& coefficients() const { return coefficients_; }  // a_1…a_p, c
+  // a_1…a_p, c, d; c is the offset at the newest sample of the last refit, d its drift
+  // [units/frame] (0 without drifting_offset).
+  const std::vector<double>& coefficients() const { return coefficients_; }
   const SwingPredictorOptions& options() const { return options_; }
 
  private:
@@ -101,13 +111,19 @@ class SwingPredictor {
   // index `newest`; empty without a model or when the fit fails.
   std::vector<double> StateAt(int newest, int span) const;
   void Score();
-  double OneStep(const std::vector<double>& state) const;  // state newest first
-  double ModelForecast(std::vector<double> state, int frames) const;
+  // The model's value at sample `time` from the p values before it (newest first).
+  double OneStep(const std::vector<double>& state, long long time) const;
+  // `frames` after the state, whose newest value is at sample `time`.
+  double ModelForecast(std::vector<double> state, long long time, int frames) const;
+  // The sample number of history_[index] (sample numbers count every Append since Clear).
+  long long TimeOf(int index) const { return newest_time_ - (samples() - 1 - index); }
 
   SwingPredictorOptions options_;
   std::deque<double> history_;        // oldest first, at most window_frames
   std::deque<int> spans_;             // per sample: [samples] its state fit's span
-  std::vector<double> coefficients_;  // a_1…a_p, c; empty when there is no model
+  std::vector<double> coefficients_;  // a_1…a_p, c, d; empty when there is no model
+  long long newest_time_ = -1;        // sample number of the newest sample
+  long long offset_origin_ = 0;       // the sample number c is the offset at
   std::vector<double> state_;         // fitted last p values, newest first
   int since_restart_ = 0;             // samples since the last jump (bounds the state fit)
   Forecaster chosen_ = Forecaster::kPersistence;
