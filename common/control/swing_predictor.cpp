@@ -306,22 +306,24 @@ bool SwingPredictor::Refit() {
   // full window: over the lock-on's first samples a drift is hard to tell from the swing's
   // start (fitted there, a calibration 1.3 × off under latency jitter rang for 100 frames).
   std::optional<std::vector<double>> w = FitAutoregression(lags, times, false);
+  Eigen::VectorXd residuals;
+  if (w) residuals = EquationResiduals(lags, times, *w);
   bool drifting = false;
   if (options_.drifting_offset && n >= options_.window_frames) {
-    std::optional<std::vector<double>> wd = FitAutoregression(lags, times, true);
-    if (wd && w) {
-      const double steady = EquationResiduals(lags, times, *w).squaredNorm();
-      const double drift = EquationResiduals(lags, times, *wd).squaredNorm();
-      drifting = steady - drift > kDriftSignificance * drift / (rows - (p + 2));
-    } else {
-      drifting = wd.has_value();
+    if (std::optional<std::vector<double>> wd = FitAutoregression(lags, times, true)) {
+      Eigen::VectorXd drift_residuals = EquationResiduals(lags, times, *wd);
+      const double drift = drift_residuals.squaredNorm();
+      drifting =
+          !w || residuals.squaredNorm() - drift > kDriftSignificance * drift / (rows - (p + 2));
+      if (drifting) {
+        w = std::move(wd);
+        residuals = std::move(drift_residuals);
+      }
     }
-    if (drifting) w = std::move(wd);
   }
   if (!w) return false;
   // One robust pass: refit without the equation residuals beyond kOutlierSigmas (a gust's
   // innovation, a bad match).
-  const Eigen::VectorXd residuals = EquationResiduals(lags, times, *w);
   std::vector<double> abs_res(static_cast<std::size_t>(rows));
   for (int r = 0; r < rows; ++r) abs_res[r] = std::abs(residuals(r));
   const double sigma = 1.4826 * Median(abs_res);
