@@ -18,6 +18,8 @@ constexpr double kTlsSeparation = 2.0;
 // unknown (n·ln(RSS₀/RSS₁) > 2). Stricter tests (F > 10) kept out drifts that still spoilt
 // the swing's fit; fitting it always cost a steady swing's forecast ~20 %.
 constexpr double kDriftSignificance = 2.0;
+// [samples] one-step innovations averaged before a jump can be told from the noise.
+constexpr int kJumpWarmupSamples = 8;
 
 double Median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -101,9 +103,8 @@ bool SwingPredictorOptions::IsValid(std::string* error) const {
     return fail("predictor window must be 4·(order + 1)…100000 frames, got " +
                 std::to_string(window_frames));
   }
-  if (smoothing_frames < order || smoothing_frames > window_frames) {
-    return fail("predictor smoothing must be order…window frames, got " +
-                std::to_string(smoothing_frames));
+  if (!(state_noise_ratio > 0) || !std::isfinite(state_noise_ratio)) {
+    return fail("predictor state noise ratio must be finite and > 0");
   }
   if (!(jump_sigmas > 0) || !std::isfinite(jump_sigmas) || !(min_jump >= 0) ||
       !std::isfinite(min_jump)) {
@@ -129,12 +130,13 @@ SwingPredictor::SwingPredictor(SwingPredictorOptions options) : options_(options
 
 void SwingPredictor::Clear() {
   history_.clear();
-  spans_.clear();
+  imputed_.clear();
+  jumped_.clear();
+  filtered_.clear();
   coefficients_.clear();
   newest_time_ = -1;
   offset_origin_ = 0;
   state_.clear();
-  since_restart_ = 0;
   chosen_ = Forecaster::kPersistence;
   for (double& s : skill_) s = std::numeric_limits<double>::quiet_NaN();
   innovation_sq_ = 0;
@@ -207,16 +209,14 @@ bool SwingPredictor::AddMissing() {
 void SwingPredictor::Append(double x, bool imputed) {
   const int p = options_.order;
   // Jump detection on the model's one-step innovation.
-  since_restart_ = std::min(since_restart_ + 1, options_.window_frames);
+  bool jump = false;
   if (!imputed && !coefficients_.empty() && static_cast<int>(state_.size()) == p) {
     const double innovation = x - OneStep(state_, newest_time_ + 1);
     const double rms = std::sqrt(innovation_sq_);
-    const bool jump =
-        innovation_samples_ >= options_.smoothing_frames &&
-        std::abs(innovation) > std::max(options_.jump_sigmas * rms, options_.min_jump);
+    jump = innovation_samples_ >= kJumpWarmupSamples &&
+           std::abs(innovation) > std::max(options_.jump_sigmas * rms, options_.min_jump);
     if (jump) {
       ++jumps_;
-      since_restart_ = p;  // the state fit restarts from the newest p samples
     } else {
       const double alpha = 1.0 / std::min(innovation_samples_ + 1, options_.skill_frames);
       innovation_sq_ += alpha * (innovation * innovation - innovation_sq_);
@@ -225,15 +225,17 @@ void SwingPredictor::Append(double x, bool imputed) {
   }
 
   history_.push_back(x);
+  imputed_.push_back(imputed);
+  jumped_.push_back(jump);
   ++newest_time_;
-  spans_.push_back(std::min(options_.smoothing_frames, since_restart_));
   while (static_cast<int>(history_.size()) > options_.window_frames) {
     history_.pop_front();
-    spans_.pop_front();
+    imputed_.pop_front();
+    jumped_.pop_front();
   }
   // While coasting the coefficients stay: imputed samples are the model's own.
   if (!imputed || coefficients_.empty()) Refit();
-  FitState();
+  FilterStates();
   // Keep the choice while coasting: the imputed samples would flatter the forecaster that
   // made them.
   if (!imputed) Score();
@@ -259,9 +261,9 @@ void SwingPredictor::Score() {
       add(Forecaster::kLinear, history_[known] + lead * (history_[known] - history_[known - 1]));
     }
     if (!coefficients_.empty() && known >= p - 1) {
-      // The forecast exactly as Forecast() would have made it at `known`: from the state
-      // fitted through the model to the samples the state fit spanned then.
-      const std::vector<double> state = StateAt(known, spans_[known]);
+      // The forecast exactly as Forecast() would have made it at `known`: from the filter's
+      // state then, which saw only the samples up to `known`.
+      const std::vector<double> state = StateAt(known);
       if (!state.empty()) add(Forecaster::kModel, ModelForecast(state, TimeOf(known), lead));
     }
   }
@@ -349,39 +351,66 @@ bool SwingPredictor::Refit() {
   return true;
 }
 
-std::vector<double> SwingPredictor::StateAt(int newest, int span) const {
+void SwingPredictor::FilterStates() {
   const int p = options_.order;
-  if (coefficients_.empty() || newest + 1 < p) return {};
-  const int k = std::clamp(span, p, newest + 1);
-  // Window y_0 … y_{k−1} (the k samples up to `newest`). Its first p values z are the
-  // unknowns; the model makes every later value affine in them: y_m = B_m · z + P_m.
-  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(k, p);
-  Eigen::VectorXd forced = Eigen::VectorXd::Zero(k);
-  for (int m = 0; m < k; ++m) {
-    if (m < p) {
-      basis(m, m) = 1.0;
-      continue;
+  const int n = samples();
+  filtered_.clear();
+  state_.clear();
+  if (coefficients_.empty() || n < p) return;
+  // The state s_k = [x_k … x_{k−p+1}] moves as s_k = F·s_{k−1} + (c + d·t_k + w_k)·e₁, with
+  // w the swing's push off the model (variance q) and each sample x_k + v_k (variance r).
+  // Only q/r matters for the filtered state, so r = 1. It starts from the first p samples
+  // as measured (covariance r·I).
+  const double q = options_.state_noise_ratio;
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(p, p);
+  for (int i = 0; i < p; ++i) f(0, i) = coefficients_[i];
+  for (int i = 1; i < p; ++i) f(i, i - 1) = 1.0;
+  Eigen::VectorXd s(p);
+  for (int i = 0; i < p; ++i) s(i) = history_[p - 1 - i];
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(p, p);
+  filtered_.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(p),
+                   std::numeric_limits<double>::quiet_NaN());
+  const auto store = [&](int k) {
+    for (int i = 0; i < p; ++i)
+      filtered_[(static_cast<std::size_t>(k) * static_cast<std::size_t>(p)) +
+                static_cast<std::size_t>(i)] = s(i);
+  };
+  store(p - 1);
+  for (int k = p; k < n; ++k) {
+    const double forced =
+        coefficients_[p] + coefficients_[p + 1] * static_cast<double>(TimeOf(k) - offset_origin_);
+    s = f * s;
+    s(0) += forced;
+    cov = f * cov * f.transpose();
+    cov(0, 0) += q;
+    if (jumped_[k]) {
+      // A gust broke the recurrence at this sample: its value is the sample itself, known
+      // only to the measurement's noise; the older values keep what they were.
+      s(0) = history_[k];
+      cov.row(0).setZero();
+      cov.col(0).setZero();
+      cov(0, 0) = 1.0;
+    } else if (!imputed_[k]) {
+      const double innovation = history_[k] - s(0);
+      const Eigen::VectorXd gain = cov.col(0) / (cov(0, 0) + 1.0);
+      s += gain * innovation;
+      cov -= gain * cov.row(0);
     }
-    forced(m) =
-        coefficients_[p] +
-        coefficients_[p + 1] * static_cast<double>(TimeOf(newest + 1 - k + m) - offset_origin_);
-    for (int i = 0; i < p; ++i) {
-      basis.row(m) += coefficients_[i] * basis.row(m - 1 - i);
-      forced(m) += coefficients_[i] * forced(m - 1 - i);
+    if (!s.allFinite()) {
+      filtered_.clear();
+      return;
     }
+    store(k);
   }
-  Eigen::VectorXd y(k);
-  for (int m = 0; m < k; ++m) y(m) = history_[newest + 1 - k + m] - forced(m);
-  const Eigen::VectorXd z = basis.colPivHouseholderQr().solve(y);
-  const Eigen::VectorXd fitted = basis * z + forced;
-  if (!fitted.allFinite()) return {};
-  std::vector<double> state;
-  for (int i = 0; i < p; ++i) state.push_back(fitted(k - 1 - i));
-  return state;
+  state_ = StateAt(n - 1);
 }
 
-void SwingPredictor::FitState() {
-  state_ = StateAt(samples() - 1, spans_.empty() ? 0 : spans_.back());
+std::vector<double> SwingPredictor::StateAt(int newest) const {
+  const int p = options_.order;
+  if (filtered_.empty() || newest < p - 1) return {};
+  const auto first =
+      filtered_.begin() + (static_cast<std::ptrdiff_t>(newest) * static_cast<std::ptrdiff_t>(p));
+  return {first, first + p};
 }
 
 }  // namespace kapfix

@@ -44,7 +44,9 @@ TEST_P(OnlineCalibrationTest, EstimateEndsWithinTenPercentAfterTwentySeconds) {
 TEST_P(OnlineCalibrationTest, LoopHoldsAsWithAnExactCalibrationOnceAdapted) {
   static const double exact = LateRms(Fly(1.0, /*adapt=*/false));
   const double adapted = LateRms(Fly(GetParam(), /*adapt=*/true));
-  EXPECT_LT(adapted, 1.5 * exact) << adapted << " px against " << exact << " px exact";
+  // The issue allows 1.5 ×; the loop adapted holds within 1.2 × (measured 0.99–1.02 ×), which
+  // an unadapted loop misses at either end (see below).
+  EXPECT_LT(adapted, 1.2 * exact) << adapted << " px against " << exact << " px exact";
 }
 
 INSTANTIATE_TEST_SUITE_P(CalibrationErrors, OnlineCalibrationTest, ::testing::Values(0.6, 1.6),
@@ -65,9 +67,12 @@ TEST(OnlineCalibrationTest, ThePanForecastTraceFollowsTheCalibrationToTheTruth) 
 }
 
 TEST(OnlineCalibrationTest, WithoutAdaptationAWrongCalibrationCostsTheLoop) {
-  // The same flight with the estimate only reported: the control for the test above.
+  // The same flights with the estimate only reported: the control for the test above. A
+  // calibration too small costs less since the swing's state is filtered (1.5 ×, from 2 ×);
+  // too large still rings (5 ×).
   const double exact = LateRms(Fly(1.0, /*adapt=*/false));
-  EXPECT_GT(LateRms(Fly(0.6, /*adapt=*/false)), 2.0 * exact);
+  EXPECT_GT(LateRms(Fly(0.6, /*adapt=*/false)), 1.3 * exact);
+  EXPECT_GT(LateRms(Fly(1.6, /*adapt=*/false)), 2.0 * exact);
 }
 
 }  // namespace
