@@ -17,9 +17,9 @@ struct SwingPredictorOptions {
   // pushes the swing off the model each frame (wind on the rig, a sway the drift does not
   // follow) over that of the measurement. Smaller trusts the model longer and averages more
   // noise; larger follows the samples. At 1 a realistic world's recorded views (broadband
-  // wind, sway, 0.6–1.1 px of noise) were forecast 2–3 frames ahead with 1.8 px RMS, against
+  // wind, sway, 0.6–1.1 px of noise) were forecast 2–3 frames ahead with 2.2 px RMS, against
   // 3.4 px for a state fitted through the model to the last 8 samples (no process noise);
-  // 0.1 and 10 gave 2.1 and 2.0.
+  // 0.1 and 3 gave 2.7 and 2.1.
   double state_noise_ratio = 1.0;
   // A one-step innovation beyond jump_sigmas · its running RMS (and beyond min_jump) is a
   // jump — a gust, say — and restarts the state filter's newest value at that sample.
