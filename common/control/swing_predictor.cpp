@@ -376,12 +376,19 @@ void SwingPredictor::FilterStates() {
                 static_cast<std::size_t>(i)] = s(i);
   };
   store(p - 1);
+  // Buffers kept across the window's samples: the filter runs over the whole window after
+  // every sample, on both axes.
+  Eigen::VectorXd predicted(p);
+  Eigen::VectorXd gain(p);
+  Eigen::MatrixXd product(p, p);
   for (int k = p; k < n; ++k) {
     const double forced =
         coefficients_[p] + coefficients_[p + 1] * static_cast<double>(TimeOf(k) - offset_origin_);
-    s = f * s;
+    predicted.noalias() = f * s;
+    s = predicted;
     s(0) += forced;
-    cov = f * cov * f.transpose();
+    product.noalias() = f * cov;
+    cov.noalias() = product * f.transpose();
     cov(0, 0) += q;
     if (jumped_[k]) {
       // A gust broke the recurrence at this sample: its value is the sample itself, known
@@ -392,9 +399,10 @@ void SwingPredictor::FilterStates() {
       cov(0, 0) = 1.0;
     } else if (!imputed_[k]) {
       const double innovation = history_[k] - s(0);
-      const Eigen::VectorXd gain = cov.col(0) / (cov(0, 0) + 1.0);
+      gain = cov.col(0) / (cov(0, 0) + 1.0);
       s += gain * innovation;
-      cov -= gain * cov.row(0);
+      product.noalias() = gain * cov.row(0);
+      cov -= product;
     }
     if (!s.allFinite()) {
       filtered_.clear();
