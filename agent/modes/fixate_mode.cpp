@@ -19,6 +19,7 @@ constexpr std::uint64_t kOffTargetLogFrames = 150;
 void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) {
   reference_frame_ = frame.image.clone();
   reference_index_ = frame.index;
+  reference_angles_ = current;
   Build();
   if (kind_ != AgentMode::kFixate) return;
   context_.events().OnReferenceTaken(reference_frame_, current);
@@ -58,6 +59,7 @@ void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {
 void FixateMode::TakeUp(const HeldView& view) {
   reference_frame_ = view.reference_frame;
   reference_index_ = view.reference_index;
+  reference_angles_.reset();
   Build();
   if (view.seek_from) loop_->SeekFrom(*view.seek_from);
 }
@@ -67,7 +69,7 @@ void FixateMode::Build() {
                                                         : FixationOptions::Reference::kStored);
   // The view to hold is the one the operator fixated, not the one in front of the camera
   // when a setting changed.
-  if (!reference_frame_.empty()) loop_->SetReference(reference_frame_);
+  if (!reference_frame_.empty()) loop_->SetReference(reference_frame_, reference_angles_);
 }
 
 void FixateMode::OnSettings(bool rebuild) {
@@ -97,8 +99,10 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
     if (lock_lost_) {
       spdlog::warn(
           "frame {}: match not trusted (confidence {:.2f}, ambiguous or poor): re-acquiring the "
-          "stored reference; the servos follow the forecast swing, then hold",
-          frame.index, outcome.step.match.confidence);
+          "stored reference; {}",
+          frame.index, outcome.step.match.confidence,
+          reference_angles_ ? "the servos return to where it was taken"
+                            : "the servos hold (where it was taken is not known)");
     } else {
       spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
     }

@@ -9,4 +9,11 @@ ServoTargets CommandRateLimiter::Limit(const ControllerGains& gains, const Servo
   return limited;
 }
 
+ServoTargets CommandRateLimiter::Unmeasured(const ControllerGains& gains, const ControlInput& input,
+                                            const ServoTargets& current) {
+  if (input.return_to) return Limit(gains, *input.return_to, current, input.dt_s);
+  Issued(current);
+  return current;
+}
+
 }  // namespace kapfix

@@ -20,6 +20,10 @@ class CommandRateLimiter {
   // with a rate set: no time passed, the previous target stands.
   ServoTargets Limit(const ControllerGains& gains, const ServoTargets& target,
                      const ServoTargets& current, double dt_s);
+  // A frame without a measurement: the targets hold at `current`, or head for
+  // input.return_to (a lost lock) at the rate limit.
+  ServoTargets Unmeasured(const ControllerGains& gains, const ControlInput& input,
+                          const ServoTargets& current);
   // A target the controller issued without limiting (a hold at `current`): the next limit
   // starts from it.
   void Issued(const ServoTargets& target) { previous_ = target; }

@@ -9,6 +9,11 @@
 
 namespace kapfix {
 
+struct ServoTargets {
+  double pan_deg = 0.0;   // [deg]
+  double tilt_deg = 0.0;  // [deg]
+};
+
 // What one frame tells the controller (SPEC §2.8).
 struct ControlInput {
   // [px] measured displacement, stored-reference convention (SPEC §1): where the reference
@@ -17,11 +22,18 @@ struct ControlInput {
   double confidence = 0.0;  // [0, 1] of the match
   bool found = false;       // false: no usable measurement this frame (the servos hold)
   double dt_s = 0.0;        // [s] since the previous Update; ≤ 0 or non-finite: no time passed
-};
-
-struct ServoTargets {
-  double pan_deg = 0.0;   // [deg]
-  double tilt_deg = 0.0;  // [deg]
+  // [deg/px] per axis, a calibration the caller found the frames to agree with (ServoBelief's
+  // scale of the stored one, under latency jitter); 0: none. A controller that estimates its
+  // own may act on it until its estimate is first trusted.
+  double pan_deg_per_px_hint = 0.0;
+  double tilt_deg_per_px_hint = 0.0;
+  // [deg] Set while the lock is lost (FixationLoop): the angles the stored reference was seen
+  // through. With no measurement the servos head there at the rate limit instead of holding,
+  // so that the free swing carries the view past the reference, where the widened search can
+  // find it again; held where a wrong match or a forecast left them, the view stays off by
+  // that much for as long as the loss lasts (baboon.jpg after SSP: 92 px RMS against the
+  // swing's own 38). None: hold.
+  std::optional<ServoTargets> return_to;
 };
 
 // Operator-set gains (SPEC §2.8). The hard servo limits are enforced elsewhere (by the servo

@@ -98,7 +98,8 @@ class DegPerPxEstimator {
   double estimate_deg_per_px() const { return estimate_deg_per_px_; }  // [deg/px]
   double relative_sigma() const { return relative_sigma_; }  // [1] σ_θ/θ; +∞ before a fit
   bool trusted() const;
-  int samples() const { return rows_; }  // [frames] rows of the last fit
+  bool ever_trusted() const { return ever_trusted_; }  // since the (re)start
+  int samples() const { return rows_; }                // [frames] rows of the last fit
 
  private:
   struct Sample {

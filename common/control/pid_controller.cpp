@@ -42,8 +42,7 @@ ServoTargets PidController::Update(const ControlInput& input, const ServoTargets
   const cv::Point2d d = input.displacement_px;
   if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
     has_previous_ = false;  // the next difference would span the gap
-    rate_limiter_.Issued(current);
-    return current;
+    return rate_limiter_.Unmeasured(gains_, input, current);
   }
   const cv::Point2d e(gains_.Correctable(d.x), gains_.Correctable(d.y));
   const bool timed = std::isfinite(input.dt_s) && input.dt_s > 0.0;

@@ -25,7 +25,9 @@ struct PredictiveOptions {
   double min_confidence = 0.0;
   // Online calibration: while the estimate of an axis's deg per px is trusted, the
   // calibration the controller acts on moves towards it every adapt_every_frames by at most
-  // the factor adapt_max_step (bounded rate of change). false: the estimate is only reported.
+  // the factor adapt_max_step (bounded rate of change); before it was first trusted, towards
+  // the frame's calibration hint (ControlInput) if there is one. false: the estimate is only
+  // reported.
   bool adapt_calibration = true;
   int adapt_every_frames = 5;   // [frames]
   double adapt_max_step = 2.0;  // [1] > 1
@@ -48,7 +50,8 @@ struct PredictiveOptions {
 // on exactly that forecast; SwingPredictor says how the forecasters are chosen. The dead
 // band holds an axis whose correction is smaller than the gains' one; the rate limit applies
 // last; I and D are not used. A frame without a measurement is bridged by the forecast for a
-// few frames, then the servos hold.
+// few frames, then the servos hold; while the lock is lost (ControlInput::return_to) they
+// head back to where the reference was seen instead.
 class PredictiveController final : public Controller {
  public:
   // Throws std::invalid_argument for gains, calibration or options that are not IsValid.
@@ -100,7 +103,10 @@ class PredictiveController final : public Controller {
   std::deque<Sample> recent_;
   int since_adapt_ = 0;   // [frames] since the calibration last moved (or was checked)
   bool adapted_ = false;  // the calibration moved since the stored one was given
-  bool Adapt();           // true when the calibration moved (the swing models were rebuilt)
+  // [deg/px] the newest frame's calibration hints (ControlInput), 0: none
+  double pan_hint_ = 0;
+  double tilt_hint_ = 0;
+  bool Adapt();  // true when the calibration moved (the swing models were rebuilt)
   void RebuildSwingModels();
   bool predicting_pan_ = false;
   bool predicting_tilt_ = false;
@@ -120,8 +126,9 @@ class PredictiveController final : public Controller {
   void Remember(const ServoTargets& current, double dx_px, double dy_px);
   // Frames lost between two calls (dt of several frame periods) as missing samples.
   void CountLostFrames(double dt_s, const ServoTargets& current);
-  // No measurement this frame: bridge with the forecast, then hold.
-  ServoTargets Coast(double dt_s, const ServoTargets& current);
+  // No measurement this frame: bridge with the forecast, then hold; or head for
+  // input.return_to (a lost lock).
+  ServoTargets Coast(const ControlInput& input, const ServoTargets& current);
   // Moves an axis's trust in its forecast against P by the residual the camera shows.
   void GradeForecast(const SwingPredictor& predictor, AxisTrust* trust, double measured_px);
   // The axis's target [deg]: the forecast and P's target blended by the trust.

@@ -28,8 +28,7 @@ ServoTargets ProportionalController::Update(const ControlInput& input,
                                             const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
   if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
-    rate_limiter_.Issued(current);
-    return current;
+    return rate_limiter_.Unmeasured(gains_, input, current);
   }
   const ServoTargets target{
       current.pan_deg + gains_.p * gains_.Correctable(d.x) * calibration_.pan_deg_per_px,

@@ -17,7 +17,11 @@ ServoBeliefController::ServoBeliefController(std::unique_ptr<Controller> control
 
 ServoTargets ServoBeliefController::Update(const ControlInput& input,
                                            const ServoTargets& /*current*/) {
-  return controller_->Update(input, belief_->Resolve(input, calibration_));
+  const ServoTargets seen = belief_->Resolve(input, calibration_);
+  ControlInput hinted = input;
+  hinted.pan_deg_per_px_hint = calibration_.pan_deg_per_px / belief_->scale(0);
+  hinted.tilt_deg_per_px_hint = calibration_.tilt_deg_per_px / belief_->scale(1);
+  return controller_->Update(hinted, seen);
 }
 
 void ServoBeliefController::Reset() {

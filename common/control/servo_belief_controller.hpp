@@ -16,7 +16,9 @@ namespace kapfix {
 // The belief is given the stored calibration (SetCalibration), not an online estimate the
 // wrapped controller may act on, and finds the scale of it that keeps its views smooth
 // itself (ServoBelief::scale): a calibration ×1.3 off roughened them enough to pick the wrong
-// command of two.
+// command of two. That scale of the stored calibration goes to the controller as the frame's
+// calibration hint (ControlInput), which a predictive controller acts on until its own
+// estimate is trusted.
 class ServoBeliefController final : public Controller {
  public:
   // Throws std::invalid_argument for a null controller or belief, or a calibration that is

@@ -155,14 +155,15 @@ class ClosedLoopRun {
   void FixateOnReference() {
     held_ = platform_.ViewOffset();
     const SimulatedFrame reference = platform_.CaptureFrame();
-    loop_->SetReference(reference.image);
+    const ServoTargets seen_through = belief_->Expose(reference.frame);
+    loop_->SetReference(reference.image, seen_through);
     reference_roll_rad_ = RollRad(reference.frame);
     const cv::Rect patch = loop_->patch();
     patch_centre_ =
         cv::Point2d(patch.x + (patch.width - 1) / 2.0 - (reference.image.cols - 1) / 2.0,
                     patch.y + (patch.height - 1) / 2.0 - (reference.image.rows - 1) / 2.0);
     const FixationLoop::Step step =
-        loop_->Process(reference.image, belief_->Expose(reference.frame), options_.frame_period_s);
+        loop_->Process(reference.image, seen_through, options_.frame_period_s);
     Command(reference.frame, step.targets);
   }
 
@@ -304,7 +305,7 @@ class ClosedLoopRun {
     figures_.confidence.push_back(kNan);
     figures_.believed.push_back({kNan, kNan});
     figures_.commanded.push_back({kNan, kNan});
-    figures_.pan_forecast.push_back({kNan, kNan, kNan});
+    figures_.pan_forecast.push_back({kNan, kNan, kNan, kNan});
     lost_ += lock_lost_ ? 1 : 0;
     honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/false, &figures_);
   }
@@ -353,12 +354,13 @@ class ClosedLoopRun {
   }
 
   ClosedLoopFigures::PanForecast PanForecast() const {
-    if (!predictive_) return {kNan, kNan, kNan};
+    if (!predictive_) return {kNan, kNan, kNan, kNan};
     const double forecaster = predictive_->predicting_pan()
                                   ? static_cast<double>(predictive_->pan_predictor().chosen())
                                   : 0.0;
     return {forecaster, predictive_->pan_forecast_weight(),
-            predictive_->calibration().pan_deg_per_px * platform_options_.px_per_deg};
+            predictive_->calibration().pan_deg_per_px * platform_options_.px_per_deg,
+            calibration_.pan_deg_per_px / belief_->scale(0) * platform_options_.px_per_deg};
   }
 
   const ClosedLoopOptions& options_;

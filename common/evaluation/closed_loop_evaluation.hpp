@@ -124,9 +124,10 @@ struct ClosedLoopFigures {
   // The predictive controller's pan axis after each frame (NaN: another controller, or a
   // dropped frame): what it acted on (0 plain P, 1 the last step extrapolated, 2 the swing
   // model; SwingPredictor::Forecaster), the forecast's weight against P [0, 1], and the
-  // calibration it acts on ÷ the true deg/px.
+  // calibration it acts on ÷ the true deg/px, and the servo belief's (ServoBelief::scale) ÷ the
+  // true deg/px.
   struct PanForecast {
-    double forecaster, weight, calibration_ratio;
+    double forecaster, weight, calibration_ratio, belief_calibration_ratio;
   };
   std::vector<PanForecast> pan_forecast;
 };

@@ -86,12 +86,14 @@ cv::Mat FixationLoop::Plane(const cv::Mat& frame_bgr) const {
   return plane;
 }
 
-void FixationLoop::SetReference(const cv::Mat& frame_bgr) {
+void FixationLoop::SetReference(const cv::Mat& frame_bgr,
+                                std::optional<ServoTargets> seen_through) {
   const cv::Mat plane = Plane(frame_bgr);
   const cv::Rect patch =
       SlicePatch(plane.size(), options_.slice_count, options_.slice, options_.patch_size);
   samples_ = SampleSet({patch}, options_.sampling);
   reference_.emplace(plane, samples_);
+  reference_angles_ = seen_through;
   StoreExposure(plane);
   patch_ = patch;
   origin_ = options_.search.origin;
@@ -238,6 +240,7 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   input.confidence = step.match.confidence;
   input.found = step.trusted;
   input.dt_s = dt_s;
+  if (reacquiring_ && stored) input.return_to = reference_angles_;
   step.targets = controller_->Update(input, current);
   step.estimate = controller_->estimate();
   return finish();

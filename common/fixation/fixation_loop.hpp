@@ -93,7 +93,9 @@ struct FixationOptions {
 // the reference patch in the frame, then ask the controller for servo targets. A match that
 // is not trusted never steers: the controller gets it as missing (the predictive one follows
 // its forecast for a few frames, then the servos hold), and after lock_lost_frames of them
-// the lock is reported lost and the search re-acquires the stored reference. No threads,
+// the lock is reported lost and the search re-acquires the stored reference, while the
+// servos head back to the angles the reference was seen through (when known), so that the
+// view swings past it. No threads,
 // no I/O; not thread-safe (one control thread owns it). The caller sends the targets to the
 // servos, whose driver enforces the hard limits.
 class FixationLoop {
@@ -104,8 +106,12 @@ class FixationLoop {
                std::unique_ptr<Controller> controller, LensCalibration calibration);
 
   // Stores the reference patch at the slice of `frame_bgr` (BGR or grey, 8 bit) and resets
-  // the controller and the lock. Throws std::invalid_argument when the patch does not fit.
-  void SetReference(const cv::Mat& frame_bgr);
+  // the controller and the lock. `seen_through` [deg]: the servo angles the frame was
+  // captured through, where a lost lock sends the servos back (ControlInput::return_to);
+  // unknown (a view taken up after a restart): a lost lock holds them where they are.
+  // Throws std::invalid_argument when the patch does not fit.
+  void SetReference(const cv::Mat& frame_bgr,
+                    std::optional<ServoTargets> seen_through = std::nullopt);
   bool has_reference() const { return reference_.has_value(); }
   // Centres the next search on `shift` [px] instead of search.origin: the reference's view was
   // found there by a wider search (an agent resuming after a restart, issue 14). With
@@ -167,7 +173,8 @@ class FixationLoop {
   SampleSet samples_;
   cv::Rect patch_;
   std::optional<ReferencePatch> reference_;
-  ExposureCompensation exposure_;  // to the reference's brightness (off: gain 1)
+  std::optional<ServoTargets> reference_angles_;  // [deg] the reference was seen through
+  ExposureCompensation exposure_;                 // to the reference's brightness (off: gain 1)
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
   int untrusted_frames_ = 0;

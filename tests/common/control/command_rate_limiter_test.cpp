@@ -42,6 +42,26 @@ TEST(CommandRateLimiterTest, WithoutElapsedTimeThePreviousTargetStands) {
   EXPECT_DOUBLE_EQ(held.tilt_deg, 1);
 }
 
+TEST(CommandRateLimiterTest, UnmeasuredHoldsAtCurrentAndTheNextLimitStartsThere) {
+  CommandRateLimiter limiter;
+  limiter.Limit(Rate(20), {10, 0}, {0, 0}, 0.1);
+  ControlInput input;
+  input.dt_s = 0.1;
+  EXPECT_DOUBLE_EQ(limiter.Unmeasured(Rate(20), input, {7, 0}).pan_deg, 7);
+  EXPECT_DOUBLE_EQ(limiter.Limit(Rate(20), {10, 0}, {0, 0}, 0.1).pan_deg, 9);
+}
+
+TEST(CommandRateLimiterTest, UnmeasuredWithAReturnHeadsThereFromThePreviousTarget) {
+  CommandRateLimiter limiter;
+  limiter.Limit(Rate(20), {10, 0}, {0, 0}, 0.1);  // 2
+  ControlInput input;
+  input.dt_s = 0.1;
+  input.return_to = ServoTargets{-5, 1};
+  const ServoTargets first = limiter.Unmeasured(Rate(20), input, {7, 0});
+  EXPECT_DOUBLE_EQ(first.pan_deg, 0);
+  EXPECT_DOUBLE_EQ(first.tilt_deg, 1);
+}
+
 TEST(CommandRateLimiterTest, AfterResetItCountsFromCurrentAgain) {
   CommandRateLimiter limiter;
   limiter.Limit(Rate(20), {10, 0}, {0, 0}, 0.1);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -122,6 +123,27 @@ TEST(PredictiveControllerTest, CoastsThroughAShortDropoutThenHolds) {
   EXPECT_FALSE(controller.predicting_pan());
 }
 
+// A lost lock (ControlInput::return_to): no bridging on a forecast fitted to what may have
+// been wrong matches; the servos head back to where the reference was seen, at the rate limit.
+TEST(PredictiveControllerTest, ALostLockHeadsForTheReferenceAnglesInsteadOfCoasting) {
+  ControllerGains gains = NoDeadBand();
+  gains.rate_limit_deg_per_s = 25;  // 1° per 0.04 s frame
+  PredictiveController controller(gains, {0.1, 0.1}, Lead(2));
+  NumericLoop loop(10, 2);
+  loop.Run(controller, 100, 0);
+  ControlInput lost = Measured(0);
+  lost.found = false;
+  lost.return_to = ServoTargets{0.5, -0.5};
+  const ServoTargets current{2.0, 0.0};
+  const ServoTargets first = controller.Update(lost, current);
+  EXPECT_LE(std::abs(first.pan_deg - loop.AngleAt(101)), 1.0 + 1e-9);  // from its last command
+  ServoTargets target = first;
+  for (int k = 0; k < 20; ++k) target = controller.Update(lost, current);
+  EXPECT_DOUBLE_EQ(target.pan_deg, 0.5);
+  EXPECT_DOUBLE_EQ(target.tilt_deg, -0.5);
+  EXPECT_FALSE(controller.predicting_pan());
+}
+
 TEST(PredictiveControllerTest, ResetForgetsTheSwing) {
   PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
   NumericLoop loop(10, 2);
@@ -221,6 +243,45 @@ TEST(PredictiveControllerCalibrationTest, AWrongCalibrationIsCorrectedWithinThre
   for (const double error : {0.6, 1.6}) {
     EXPECT_NEAR(CalibrationRatioAfter(75, error), 1.0, 0.1) << "calibration x" << error;
   }
+}
+
+ControlInput Hinted(double dx, double pan_deg_per_px_hint) {
+  ControlInput input = Measured(dx);
+  input.pan_deg_per_px_hint = pan_deg_per_px_hint;
+  return input;
+}
+
+TEST(PredictiveControllerCalibrationTest, ActsOnTheCallersHintBeforeItsEstimateIsTrusted) {
+  PredictiveController controller(NoDeadBand(), {0.13, 0.1}, Lead(2));
+  controller.Update(Hinted(-5, 0.1), {0, 0});
+  ASSERT_FALSE(controller.pan_estimator().trusted());
+  EXPECT_DOUBLE_EQ(controller.calibration().pan_deg_per_px, 0.1);
+  EXPECT_DOUBLE_EQ(controller.calibration().tilt_deg_per_px, 0.1);  // no hint: stays
+}
+
+TEST(PredictiveControllerCalibrationTest, AHintOfTheOtherSignOrNoneIsNotActedOn) {
+  PredictiveController controller(NoDeadBand(), {0.13, 0.1}, Lead(2));
+  controller.Update(Hinted(-5, -0.1), {0, 0});
+  controller.Update(Hinted(-5, std::numeric_limits<double>::quiet_NaN()), {0, 0});
+  controller.Update(Hinted(-5, 0), {0, 0});
+  EXPECT_DOUBLE_EQ(controller.calibration().pan_deg_per_px, 0.13);
+}
+
+// A trusted estimate outranks the hint: one 2× off, sent for 50 frames after the lock-on of
+// CalibrationRatioAfter (calibration ×1.6), moves nothing.
+TEST(PredictiveControllerCalibrationTest, ATrustedEstimateOutranksTheHint) {
+  PredictiveController controller(NoDeadBand(), {0.16, 0.16}, Lead(2));
+  std::vector<double> commands;
+  for (int t = 0; t < 125; ++t) {
+    const double angle = t >= 2 ? commands[static_cast<std::size_t>(t - 2)] : 0.0;
+    const double offset = GustySwing(t) + angle * 10;
+    const double hint = t < 75 ? 0.0 : 0.2;
+    if (t == 75) {
+      ASSERT_TRUE(controller.pan_estimator().trusted());
+    }
+    commands.push_back(controller.Update(Hinted(-offset, hint), {angle, 0}).pan_deg);
+  }
+  EXPECT_NEAR(controller.calibration().pan_deg_per_px, 0.1, 0.01);
 }
 
 TEST(PredictiveControllerEstimateTest, ReportsTheStoredCalibrationUntrustedBeforeAnyFit) {

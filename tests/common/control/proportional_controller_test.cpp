@@ -51,6 +51,19 @@ TEST(ProportionalControllerTest, NotFoundHoldsTheServos) {
   EXPECT_DOUBLE_EQ(t.tilt_deg, 4.0);
 }
 
+TEST(ProportionalControllerTest, NotFoundWithAReturnHeadsThereAtTheRateLimit) {
+  ControllerGains gains;
+  gains.rate_limit_deg_per_s = 10;
+  ProportionalController c(gains, kLens);
+  ControlInput input = Measured(50, 50, 0.1);
+  input.found = false;
+  input.return_to = ServoTargets{0.0, 5.0};
+  const ServoTargets first = c.Update(input, {3.0, 4.0});
+  EXPECT_DOUBLE_EQ(first.pan_deg, 2.0);
+  EXPECT_DOUBLE_EQ(first.tilt_deg, 5.0);
+  EXPECT_DOUBLE_EQ(c.Update(input, {3.0, 4.0}).pan_deg, 1.0);  // from its own last command
+}
+
 TEST(ProportionalControllerTest, RateLimitBoundsTheMovePerSecond) {
   ControllerGains gains;
   gains.rate_limit_deg_per_s = 10;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "common/control/proportional_controller.hpp"
 #include "common/control/servo_belief_controller.hpp"
@@ -23,6 +24,19 @@ ControlInput Measured(double dx, double dy) {
   input.found = true;
   input.dt_s = 0.04;
   return input;
+}
+
+// A servo whose latency jitters between 1 and 2 frames, with no play, dead band or speed
+// limit to speak of: only the jitter is left for the belief to resolve.
+SimulatedServoOptions JitteryServo() {
+  SimulatedServoOptions options;
+  options.latency_frames = 1;
+  options.latency_max_frames = 2;
+  options.backlash_deg = 0;
+  options.dead_band_deg = 0;
+  options.rate_limit_deg_per_frame = 50;
+  options.seed = 7;
+  return options;
 }
 
 TEST(ServoBeliefTest, AFixedLatencyBelievesTheCommandSentThatManyFramesBefore) {
@@ -65,14 +79,7 @@ TEST(ServoBeliefTest, WithoutAMeasurementTheBeliefIsTheCandidatesWeightedMean) {
 // belief resolved from each frame's measurement is the servo's true angle, where the mean of
 // the commands that may be in effect is wrong by half a frame's motion on every frame.
 TEST(ServoBeliefTest, ResolvesTheCommandInEffectUnderLatencyJitter) {
-  SimulatedServoOptions servo_options;
-  servo_options.latency_frames = 1;
-  servo_options.latency_max_frames = 2;
-  servo_options.backlash_deg = 0;
-  servo_options.dead_band_deg = 0;
-  servo_options.rate_limit_deg_per_frame = 50;
-  servo_options.seed = 7;
-  SimulatedServo servo(servo_options);
+  SimulatedServo servo(JitteryServo());
   ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
   const auto swing = [](double t) {  // [px] the platform's view, SPEC §3's swing
     return 100 * std::sin(2 * std::numbers::pi * t / 40);
@@ -108,14 +115,7 @@ TEST(ServoBeliefTest, ResolvesTheCommandInEffectUnderLatencyJitter) {
 // early/late steps. The belief finds the scale that makes the views smooth and still
 // resolves the command in effect.
 TEST(ServoBeliefTest, FindsTheCalibrationScaleAndResolvesUnderJitterWithACalibrationOff) {
-  SimulatedServoOptions servo_options;
-  servo_options.latency_frames = 1;
-  servo_options.latency_max_frames = 2;
-  servo_options.backlash_deg = 0;
-  servo_options.dead_band_deg = 0;
-  servo_options.rate_limit_deg_per_frame = 50;
-  servo_options.seed = 7;
-  SimulatedServo servo(servo_options);
+  SimulatedServo servo(JitteryServo());
   ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
   const LensCalibration off{1.3 * kLens.pan_deg_per_px, 1.3 * kLens.tilt_deg_per_px};
   const auto swing = [](double t) {  // [px] the platform's view, SPEC §3's swing
@@ -143,6 +143,48 @@ TEST(ServoBeliefTest, FindsTheCalibrationScaleAndResolvesUnderJitterWithACalibra
   // px per deg: the true 10 is 1.3 × the given calibration's 7.7; the grid steps by 6 %.
   EXPECT_NEAR(belief.scale(0), 1.3, 0.08);
   EXPECT_DOUBLE_EQ(belief.scale(1), 1.0);  // tilt never moved: nothing to tell scales apart
+}
+
+// Remembers the input of its last Update; holds the servos where they are.
+class RecordingController final : public Controller {
+ public:
+  ServoTargets Update(const ControlInput& input, const ServoTargets& current) override {
+    last_input = input;
+    return current;
+  }
+  void Reset() override {}
+  std::string name() const override { return "recording"; }
+  void SetCalibration(const LensCalibration& /*calibration*/) override {}
+  void SetGains(const ControllerGains& /*gains*/) override {}
+
+  ControlInput last_input;
+};
+
+// The scene of FindsTheCalibrationScale… seen through the controller wrapper: the scale the
+// belief found reaches the wrapped controller as its calibration hint, the stored calibration
+// ÷ that scale — here near the true deg/px, not the stored one ×1.3.
+TEST(ServoBeliefControllerTest, HandsTheControllerTheCalibrationItsViewsAgreeWith) {
+  SimulatedServo servo(JitteryServo());
+  auto belief = std::make_shared<ServoBelief>(
+      ServoBeliefOptions{.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
+  const LensCalibration off{1.3 * kLens.pan_deg_per_px, 1.3 * kLens.tilt_deg_per_px};
+  auto recording = std::make_unique<RecordingController>();
+  const RecordingController* seen = recording.get();
+  ServoBeliefController controller(std::move(recording), belief, off);
+  for (int t = 0; t < 200; ++t) {
+    if (t > 0) servo.Step();
+    const double dx =
+        -(100 * std::sin(2 * std::numbers::pi * t / 40) + servo.angle() / kLens.pan_deg_per_px);
+    belief->Expose(t);
+    controller.Update(Measured(dx, 0), {});
+    const double command =
+        -1.3 * 100 * std::sin(2 * std::numbers::pi * (t + 2.5) / 40) * kLens.pan_deg_per_px;
+    servo.Command(command);
+    belief->Sent(t, {command, 0});
+  }
+  EXPECT_NEAR(seen->last_input.pan_deg_per_px_hint, kLens.pan_deg_per_px,
+              0.08 * kLens.pan_deg_per_px);
+  EXPECT_DOUBLE_EQ(seen->last_input.tilt_deg_per_px_hint, off.tilt_deg_per_px);  // never moved
 }
 
 TEST(ServoBeliefTest, RefusesAnEmptyDelayRange) {

@@ -108,6 +108,60 @@ TEST(FixationLoopTest, LockIsLostAfterTheConfiguredRunOfUntrustedFrames) {
   EXPECT_DOUBLE_EQ(third.targets.pan_deg, 1.0);  // untrusted: the servos hold
 }
 
+// A lost lock sends the servos back to where the reference was seen, not holding them where
+// the last (perhaps wrong) matches left them: the free swing then carries the view past the
+// reference, where the widened search can find it (baboon.jpg after SSP: parked 65 px off,
+// 92 px RMS against the swing's own 38).
+TEST(FixationLoopTest, ALostLockSendsTheServosBackToWhereTheReferenceWasSeen) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 2;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference, ServoTargets{-2.0, 3.0});
+  ConfirmLock(loop, reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  const FixationLoop::Step first = loop.Process(blank, {5.0, -1.0}, 0.04);
+  ASSERT_FALSE(first.lock_lost);
+  EXPECT_DOUBLE_EQ(first.targets.pan_deg, 5.0);  // a confirmed lock rides it out, holding
+  const FixationLoop::Step lost = loop.Process(blank, {5.0, -1.0}, 0.04);
+  ASSERT_TRUE(lost.lock_lost);
+  EXPECT_DOUBLE_EQ(lost.targets.pan_deg, -2.0);
+  EXPECT_DOUBLE_EQ(lost.targets.tilt_deg, 3.0);
+}
+
+TEST(FixationLoopTest, ALostLockOfAViewWhoseAnglesAreUnknownHoldsTheServos) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 1;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  ConfirmLock(loop, reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  const FixationLoop::Step lost = loop.Process(blank, {5.0, -1.0}, 0.04);
+  ASSERT_TRUE(lost.lock_lost);
+  EXPECT_DOUBLE_EQ(lost.targets.pan_deg, 5.0);
+  EXPECT_DOUBLE_EQ(lost.targets.tilt_deg, -1.0);
+}
+
+// Re-acquired, the measurement steers again: the return ends with the loss.
+TEST(FixationLoopTest, AReacquiredLockSteersByTheMatchNotBackToTheReferenceAngles) {
+  FixationOptions o = Options();
+  o.lock_lost_frames = 1;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference, ServoTargets{-2.0, 3.0});
+  ConfirmLock(loop, reference);
+  const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  ASSERT_TRUE(loop.Process(blank, {5.0, -1.0}, 0.04).lock_lost);
+  FixationLoop::Step step;
+  for (int k = 0; k < o.lock_regain_frames; ++k) {
+    step = loop.Process(testing::Translated(reference, 6, 0), {1.0, 1.0}, 0.04);
+  }
+  ASSERT_TRUE(step.trusted);
+  EXPECT_NEAR(step.targets.pan_deg, 1.0 + 0.6, 0.02);
+  EXPECT_NEAR(step.targets.tilt_deg, 1.0, 0.02);
+}
+
 TEST(FixationLoopTest, ARunOfClearFramesEndsARunOfUntrustedOnes) {
   FixationOptions o = Options();
   o.lock_lost_frames = 2;
