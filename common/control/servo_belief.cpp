@@ -240,6 +240,10 @@ double ServoBelief::scale(int axis) const {
   return scales_[axes_[static_cast<std::size_t>(axis)].scale];
 }
 
+LensCalibration ServoBelief::Scaled(const LensCalibration& calibration) const {
+  return {calibration.pan_deg_per_px / scale(0), calibration.tilt_deg_per_px / scale(1)};
+}
+
 std::vector<double> ServoBelief::Candidates(int axis) const {
   std::vector<double> out;
   for (const Candidate& c : axes_[static_cast<std::size_t>(axis)].candidates) out.push_back(c.deg);

@@ -78,6 +78,8 @@ class ServoBelief {
   // [1] per axis, the scale of the given calibration's px per deg that the views are
   // reconstructed with (1 until another scale continues the views clearly better).
   double scale(int axis) const;
+  // [deg/px] `calibration` divided by scale() per axis: the calibration the views agree with.
+  LensCalibration Scaled(const LensCalibration& calibration) const;
 
  private:
   struct Command {

@@ -19,8 +19,9 @@ ServoTargets ServoBeliefController::Update(const ControlInput& input,
                                            const ServoTargets& /*current*/) {
   const ServoTargets seen = belief_->Resolve(input, calibration_);
   ControlInput hinted = input;
-  hinted.pan_deg_per_px_hint = calibration_.pan_deg_per_px / belief_->scale(0);
-  hinted.tilt_deg_per_px_hint = calibration_.tilt_deg_per_px / belief_->scale(1);
+  const LensCalibration agreed = belief_->Scaled(calibration_);
+  hinted.pan_deg_per_px_hint = agreed.pan_deg_per_px;
+  hinted.tilt_deg_per_px_hint = agreed.tilt_deg_per_px;
   return controller_->Update(hinted, seen);
 }
 

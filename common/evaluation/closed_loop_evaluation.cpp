@@ -360,7 +360,7 @@ class ClosedLoopRun {
                                   : 0.0;
     return {forecaster, predictive_->pan_forecast_weight(),
             predictive_->calibration().pan_deg_per_px * platform_options_.px_per_deg,
-            calibration_.pan_deg_per_px / belief_->scale(0) * platform_options_.px_per_deg};
+            belief_->Scaled(calibration_).pan_deg_per_px * platform_options_.px_per_deg};
   }
 
   const ClosedLoopOptions& options_;
