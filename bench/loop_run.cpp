@@ -18,7 +18,8 @@ void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
   std::ofstream out(path);
   out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
          "commanded_tilt,measured_x,measured_y,confidence,lock_lost,off_target,open_x,open_y,"
-         "pan_forecaster,pan_forecast_weight,pan_calibration_ratio,pan_belief_calibration_ratio\n";
+         "pan_forecaster,pan_forecast_weight,pan_calibration_ratio,pan_belief_calibration_ratio,"
+         "roll_read_deg,roll_true_deg\n";
   for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
     out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
         << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
@@ -27,7 +28,8 @@ void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
         << (f.lock_lost[k] ? 1 : 0) << ',' << (f.off_target[k] ? 1 : 0) << ','
         << f.open_offsets[k].x << ',' << f.open_offsets[k].y << ',' << f.pan_forecast[k].forecaster
         << ',' << f.pan_forecast[k].weight << ',' << f.pan_forecast[k].calibration_ratio << ','
-        << f.pan_forecast[k].belief_calibration_ratio << '\n';
+        << f.pan_forecast[k].belief_calibration_ratio << ',' << f.roll_read_deg[k] << ','
+        << f.roll_true_deg[k] << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
@@ -54,6 +56,8 @@ void DropPerFrame(ClosedLoopFigures* f) {
   f->angles = {};
   f->believed = {};
   f->commanded = {};
+  f->roll_read_deg = {};
+  f->roll_true_deg = {};
 }
 
 }  // namespace

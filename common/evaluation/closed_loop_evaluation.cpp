@@ -306,6 +306,8 @@ class ClosedLoopRun {
     figures_.believed.push_back({kNan, kNan});
     figures_.commanded.push_back({kNan, kNan});
     figures_.pan_forecast.push_back({kNan, kNan, kNan, kNan});
+    figures_.roll_read_deg.push_back(kNan);
+    figures_.roll_true_deg.push_back(kNan);
     lost_ += lock_lost_ ? 1 : 0;
     honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/false, &figures_);
   }
@@ -344,6 +346,9 @@ class ClosedLoopRun {
     figures_.measured_x.push_back(step.match.found ? step.match.displacement.x : kNan);
     figures_.measured_y.push_back(step.match.found ? step.match.displacement.y : kNan);
     figures_.confidence.push_back(step.match.confidence);
+    figures_.roll_read_deg.push_back(step.roll_deg);
+    figures_.roll_true_deg.push_back((RollRad(frame) - reference_roll_rad_) * 180 /
+                                     std::numbers::pi);
     lost_ += step.lock_lost ? 1 : 0;
     if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {
       ++predicting_;

@@ -121,6 +121,10 @@ struct ClosedLoopFigures {
   std::vector<ServoTargets> angles;       // [deg] servo output angles each frame was seen by
   std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
   std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
+  // [deg] the roll since the reference the loop read for its claim (Step::roll_deg; NaN: not
+  // read, or dropped) and the camera's true roll since the reference
+  std::vector<double> roll_read_deg;
+  std::vector<double> roll_true_deg;
   // The predictive controller's pan axis after each frame (NaN: another controller, or a
   // dropped frame): what it acted on (0 plain P, 1 the last step extrapolated, 2 the swing
   // model; SwingPredictor::Forecaster), the forecast's weight against P [0, 1], and the

@@ -176,7 +176,11 @@ bool FixationLoop::HoldsView(const cv::Mat& plane, const cv::Point2d& displaceme
   }
   const std::optional<PatchRoll> roll =
       ReadPatchRoll(reference_->image(), patch_, plane, step->match.displacement, options_.roll);
-  if (!roll) return patch_px <= options_.off_target_px;  // the patch alone
+  // A roll in range could carry the centre across the line and none could be read (the
+  // patch too near the frame's edge, or its refinement strays from the search's answer): the
+  // loop cannot vouch for the centre, so it does not claim it (building.jpg after SSP: claimed
+  // by the patch alone, 10.4 px off).
+  if (!roll) return false;
   step->roll_deg = roll->roll_rad * 180 / std::numbers::pi;
   const cv::Point2d centre =
       OnSearchedAxes(CentreDisplacement(roll->displacement, roll->roll_rad, offset));

@@ -136,14 +136,28 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
   const cv::Rect around(static_cast<int>(std::floor(patch.x + displacement.x)) - room,
                         static_cast<int>(std::floor(patch.y + displacement.y)) - room,
                         patch.width + 2 * room + k, patch.height + 2 * room + k);
-  if ((around & cv::Rect(0, 0, current_plane.cols, current_plane.rows)) != around) {
-    return std::nullopt;
+  // Only the patch's inside (margin_px in from each side) is compared, so the frame need hold
+  // just that with the room; the rest of `around` may lie beyond the frame's edge and is
+  // filled by replication (a patch on a slice clamped to the bottom edge, as SSP may choose).
+  const int inset = std::min(options.margin_px, patch.width / 2 - 2);
+  const cv::Rect used(around.x + inset, around.y + inset, around.width - 2 * inset,
+                      around.height - 2 * inset);
+  const cv::Rect frame(0, 0, current_plane.cols, current_plane.rows);
+  if (inset < 0 || (used & frame) != used) return std::nullopt;
+  cv::Mat around_plane;
+  if ((around & frame) == around) {
+    around_plane = current_plane(around);
+  } else {
+    const cv::Rect inside = around & frame;
+    cv::copyMakeBorder(current_plane(inside), around_plane, inside.y - around.y,
+                       around.br().y - inside.br().y, inside.x - around.x,
+                       around.br().x - inside.br().x, cv::BORDER_REPLICATE);
   }
   // A patch a whole number of reduced pixels wide, centred where the patch is.
   const cv::Rect fitted(patch.x + (patch.width % k) / 2, patch.y + (patch.height % k) / 2,
                         patch.width - patch.width % k, patch.height - patch.height % k);
   const RollFit fit(
-      reference_plane(fitted), current_plane(around), around.tl(),
+      reference_plane(fitted), around_plane, around.tl(),
       cv::Point2d(fitted.x + 0.5 * (fitted.width - 1), fitted.y + 0.5 * (fitted.height - 1)), k,
       options.margin_px);
   if (!fit.usable()) return std::nullopt;

@@ -37,8 +37,9 @@ struct PatchRoll {
 };
 
 // `displacement` [px]: where the search saw the patch (patch + displacement). Both planes
-// single- or three-channel, 8 or 16 bit, the same type. Nothing when the displaced patch (with
-// a pixel or two to refine in) leaves the frame.
+// single- or three-channel, 8 or 16 bit, the same type. Nothing when the displaced patch's
+// inside (margin_px in from its sides, with a pixel or two to refine in) leaves the frame,
+// or when the refinement strays from `displacement` (the search saw the patch elsewhere).
 std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv::Rect& patch,
                                        const cv::Mat& current_plane,
                                        const cv::Point2d& displacement,

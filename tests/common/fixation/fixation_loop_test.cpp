@@ -315,6 +315,24 @@ TEST(FixationLoopTest, AnOffCentrePatchUnderRollWhoseCentreIsHeldIsClaimedOnTarg
   EXPECT_FALSE(step.off_target);
 }
 
+// The patch is held 3 px off, but a roll in range could put the centre 16 px away, and the
+// roll cannot be read (a margin that leaves no inside to compare): the loop cannot vouch for
+// the centre, so it does not claim the view; judging the patch alone, it would.
+TEST(FixationLoopTest, AClaimThatNeedsAnUnreadableRollIsNotMade) {
+  for (const bool roll_aware : {true, false}) {
+    FixationOptions o = Options();
+    o.slice = 8;
+    o.roll_aware_claim = roll_aware;
+    o.roll.margin_px = 49;  // of a 100 px patch: nothing left to compare
+    FixationLoop loop(o, Pyr(), PlainP(), kLens);
+    loop.SetReference(RolledView(0, 0));
+    const FixationLoop::Step step = loop.Process(RolledView(0, 3), {}, 0.04);
+    ASSERT_TRUE(step.trusted) << roll_aware;
+    EXPECT_EQ(step.off_target, roll_aware);
+    EXPECT_TRUE(std::isnan(step.roll_deg));
+  }
+}
+
 TEST(FixationLoopTest, AnUntrustedFrameIsNeverClaimedOnTarget) {
   FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
   const cv::Mat reference = Texture();

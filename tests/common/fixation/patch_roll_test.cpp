@@ -67,6 +67,22 @@ TEST(PatchRollTest, AnOffCentrePatchHeldUnderRollLeavesTheCentreWhereTheShiftPut
   EXPECT_NEAR(centre.y, shift.y, 1e-9);
 }
 
+// SSP may choose the bottom slice, whose patch is clamped against the frame's edge: only the
+// patch's inside is compared, so the roll is read there too.
+TEST(PatchRollTest, ReadsTheRollOfAPatchOnTheFramesEdge) {
+  const double roll = 2 * kRadPerDeg;
+  const cv::Point2d shift(3, -2);
+  const cv::Rect patch = SlicePatch(kFrame, 9, 9, 100);
+  ASSERT_EQ(patch.br().y, kFrame.height) << "the patch touches the bottom edge";
+  const cv::Point2d truth = PatchDisplacement(roll, shift, patch);
+  const std::optional<PatchRoll> read =
+      ReadPatchRoll(View(0, {0, 0}), patch, View(roll, shift), truth + cv::Point2d(0.5, 0.4), {});
+  ASSERT_TRUE(read.has_value());
+  EXPECT_NEAR(read->roll_rad / kRadPerDeg, 2, 0.2);
+  EXPECT_NEAR(read->displacement.x, truth.x, 0.3);
+  EXPECT_NEAR(read->displacement.y, truth.y, 0.3);
+}
+
 TEST(PatchRollTest, NothingWhenTheDisplacedPatchLeavesTheFrame) {
   const cv::Mat view = View(0, {0, 0});
   const cv::Rect patch = SlicePatch(kFrame, 9, 9, 100);
