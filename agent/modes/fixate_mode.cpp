@@ -19,6 +19,7 @@ constexpr std::uint64_t kOffTargetLogFrames = 150;
 void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) {
   reference_frame_ = frame.image.clone();
   reference_index_ = frame.index;
+  reference_seen_at_ = {0, 0};
   reference_angles_ = current;
   Build();
   if (kind_ != AgentMode::kFixate) return;
@@ -59,6 +60,7 @@ void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {
 void FixateMode::TakeUp(const HeldView& view) {
   reference_frame_ = view.reference_frame;
   reference_index_ = view.reference_index;
+  reference_seen_at_ = view.seen_at;
   reference_angles_.reset();
   Build();
   if (view.seek_from) loop_->SeekFrom(*view.seek_from);
@@ -85,7 +87,8 @@ std::optional<HeldView> FixateMode::HeldFixation() const {
   return HeldView{.reference_frame = reference_frame_,
                   .reference_index = reference_index_,
                   .slice = context_.slice(),
-                  .seek_from = std::nullopt};
+                  .seek_from = std::nullopt,
+                  .seen_at = reference_seen_at_};
 }
 
 FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets& current,
@@ -130,7 +133,10 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
   outcome.slice = context_.slice();
   outcome.slice_count = context_.settings().search.slices;
   outcome.patch = loop_->patch();
-  if (kind_ == AgentMode::kFixate) outcome.reference_frame = reference_index_;
+  if (kind_ == AgentMode::kFixate) {
+    outcome.reference_frame = reference_index_;
+    outcome.reference_seen_at = reference_seen_at_;
+  }
   return outcome;
 }
 

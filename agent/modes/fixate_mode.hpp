@@ -49,6 +49,7 @@ class FixateMode : public Mode {
   std::optional<std::uint64_t> last_off_target_log_;  // frame index of that line
   cv::Mat reference_frame_;                           // the frame the reference was taken from
   std::uint64_t reference_index_ = 0;                 // its index
+  cv::Point2d reference_seen_at_{0, 0};               // [px] HeldView::seen_at of the view held
   // [deg] the angles it was seen through, where a lost lock sends the servos back; unknown
   // for a view taken up after a restart
   std::optional<ServoTargets> reference_angles_;

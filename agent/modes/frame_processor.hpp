@@ -19,6 +19,7 @@ struct FrameOutcome {
   cv::Rect patch;       // [px] reference patch in the reference frame; empty = none
   // Fixate: the index of the frame whose view is held; none in the other modes.
   std::optional<std::uint64_t> reference_frame;
+  cv::Point2d reference_seen_at{0, 0};  // [px] HeldView::seen_at of that frame
 };
 
 // What the control thread runs on each frame: ModeRunner in the agent, anything in tests.

@@ -19,6 +19,10 @@ struct HeldView {
   std::uint64_t reference_index = 0;
   int slice = 0;                       // [1..slice_count]
   std::optional<cv::Point> seek_from;  // [px] where the view was found (a resume)
+  // [px] where reference_index's frame shows the held view (stored-reference convention): 0
+  // for a view taken from that frame; a view resumed after a restart is the stored frame's,
+  // found displaced by this in the frame that resumed it.
+  cv::Point2d seen_at{0, 0};
 };
 
 // How a mode ended by itself (deadline reached, calibration done, view found or not): what

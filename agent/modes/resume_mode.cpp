@@ -56,7 +56,8 @@ FrameOutcome ResumeMode::Process(const CapturedFrame& frame, const ServoTargets&
     Finish(ModeEnd{.fixate = HeldView{.reference_frame = reference_frame_,
                                       .reference_index = frame.index,
                                       .slice = context_.slice(),
-                                      .seek_from = match.shift},
+                                      .seek_from = match.shift,
+                                      .seen_at = match.displacement},
                    .hold = hold_,
                    .resumed = true});
     return outcome;

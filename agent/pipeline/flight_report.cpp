@@ -55,7 +55,9 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
   f.frames = records.size();
   f.fps = stats.wall_s > 0 ? static_cast<double>(stats.processed) / stats.wall_s : 0.0;
   // The simulation's truth is each frame's view offset from frame 0's view; what fixation
-  // holds is the view of its reference frame, so the error is the difference of the two.
+  // holds is the view of its reference frame, so the error is the difference of the two. A
+  // view resumed after a restart was taken in another run: its truth is the frame that found
+  // it, moved by where it was found there (the resume's match, within the matcher's miss).
   std::map<std::uint64_t, cv::Point2d> truth;
   for (const TelemetryRecord& r : records) {
     if (r.view_offset_x_px && r.view_offset_y_px) {
@@ -76,7 +78,7 @@ FlightFigures ComputeFlightFigures(const std::vector<TelemetryRecord>& records,
     const auto now = truth.find(r.index);
     const auto held = truth.find(*r.reference_frame);
     if (now == truth.end() || held == truth.end()) continue;
-    const cv::Point2d error = now->second - held->second;
+    const cv::Point2d error = now->second - (held->second + r.reference_seen_at);
     sum_sq += error.dot(error);
     ++with_truth;
     errors.push_back(std::hypot(error.x, error.y));

@@ -251,6 +251,7 @@ void Pipeline::ControlThread(PipelineStats* stats, const std::function<void()>& 
     record.slice = outcome.slice;
     record.distance = step.match.distance;
     record.reference_frame = outcome.reference_frame;
+    record.reference_seen_at = outcome.reference_seen_at;
     record.estimate = step.estimate;
     const DevicesHealth devices = health();
     record.camera_health = devices.camera;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <optional>
 
 #include "agent/modes/agent_mode.hpp"
@@ -26,12 +27,16 @@ struct TelemetryRecord {
   double angle_tilt_deg = 0;
   double loop_latency_ms = 0;  // [ms] frame taken → servos commanded (wall clock)
   AgentMode mode = AgentMode::kIdle;
-  int slice = 0;                                 // [1..slice_count] slice in use; 0 = none
-  std::int64_t distance = 0;                     // [grey level²] SSD at the match
-  std::optional<std::uint64_t> reference_frame;  // fixate: index of the frame whose view is held
-  DeviceHealth camera_health;                    // after this step's servo command
+  int slice = 0;              // [1..slice_count] slice in use; 0 = none
+  std::int64_t distance = 0;  // [grey level²] SSD at the match
+  // fixate: the frame whose view is held, or (a view resumed after a restart) the frame
+  // that found the stored view, displaced there by reference_seen_at [px] (stored-reference
+  // convention: a perfect match measures held view − this frame's view)
+  std::optional<std::uint64_t> reference_frame;
+  cv::Point2d reference_seen_at{0, 0};
+  DeviceHealth camera_health;  // after this step's servo command
   DeviceHealth servo_health;
-  // [px] simulation only: the view's true residual offset from the reference frame's view.
+  // [px] simulation only: the view's true offset from frame 0's view (SimulatedPlatform).
   std::optional<double> view_offset_x_px;
   std::optional<double> view_offset_y_px;
   // The controller's online deg/px estimate and forecast weight after this step (issue 9);

@@ -379,6 +379,10 @@ TEST(ModeRunnerTest, ResumeHoldsTheServosUntilTheStoredViewIsFoundThenFixatesIt)
   ASSERT_TRUE(found.step.match.found);
   EXPECT_NEAR(found.step.match.displacement.x, 45, 1.0);
   EXPECT_NEAR(found.step.match.displacement.y, 30, 1.0);
+  // The view held is not the finding frame's: the report judges it from where it was found.
+  ASSERT_EQ(found.reference_frame, std::optional<std::uint64_t>(3));
+  EXPECT_NEAR(found.reference_seen_at.x, 45, 1.0);
+  EXPECT_NEAR(found.reference_seen_at.y, 30, 1.0);
   EXPECT_EQ(events.resumes, std::vector<bool>{true});
   EXPECT_EQ(runner.mode(), AgentMode::kFixate);
   // The loop goes on from there: the next frame, a little further, is still the stored view.
@@ -386,6 +390,7 @@ TEST(ModeRunnerTest, ResumeHoldsTheServosUntilTheStoredViewIsFoundThenFixatesIt)
   ASSERT_TRUE(next.step.match.found);
   EXPECT_NEAR(next.step.match.displacement.x, 50, 1.0);
   EXPECT_NEAR(next.step.match.displacement.y, 30, 1.0);
+  EXPECT_EQ(next.reference_seen_at, found.reference_seen_at);
 }
 
 TEST(ModeRunnerTest, ResumeThatCannotFindTheStoredViewStaysIdleAndSaysSo) {

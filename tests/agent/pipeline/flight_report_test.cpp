@@ -135,5 +135,18 @@ TEST(FlightReportTest, SilentGrossCountsOnlyFramesClaimedOnTarget) {
   EXPECT_DOUBLE_EQ(f.lock_lost_pct, 25.0);
 }
 
+// A view resumed after a restart was taken in another run: it lies 4 px right of the view of
+// the frame that found it (0), so a frame 11 px right of frame 0's view is 7 px off the held
+// view, not gross; judged against frame 0's view it would be a silent gross frame.
+TEST(FlightReportTest, AResumedViewIsJudgedFromWhereTheResumeFoundIt) {
+  std::vector<TelemetryRecord> records = {Fixating(0, 0, false, false),
+                                          Fixating(1, 11, false, false)};
+  for (TelemetryRecord& r : records) r.reference_seen_at = {4, 0};
+  const FlightFigures f = ComputeFlightFigures(records, PipelineStats{});
+  EXPECT_DOUBLE_EQ(f.rms_error_px, 7.0);
+  EXPECT_DOUBLE_EQ(f.gross_pct, 0.0);
+  EXPECT_DOUBLE_EQ(f.silent_gross_pct, 0.0);
+}
+
 }  // namespace
 }  // namespace kapfix::agent
