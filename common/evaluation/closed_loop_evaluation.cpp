@@ -347,7 +347,8 @@ class ClosedLoopRun {
     figures_.measured_y.push_back(step.match.found ? step.match.displacement.y : kNan);
     figures_.confidence.push_back(step.match.confidence);
     figures_.roll_read_deg.push_back(step.roll_deg);
-    figures_.roll_true_deg.push_back((RollRad(frame) - reference_roll_rad_) * 180 /
+    // The camera's roll turns the content the other way (SliceTruth).
+    figures_.roll_true_deg.push_back(-(RollRad(frame) - reference_roll_rad_) * 180 /
                                      std::numbers::pi);
     lost_ += step.lock_lost ? 1 : 0;
     if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {

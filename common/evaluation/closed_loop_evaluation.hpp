@@ -122,7 +122,8 @@ struct ClosedLoopFigures {
   std::vector<ServoTargets> believed;     // [deg] what the loop believed them to be
   std::vector<ServoTargets> commanded;    // [deg] what it commanded after the frame (as sent)
   // [deg] the roll since the reference the loop read for its claim (Step::roll_deg; NaN: not
-  // read, or dropped) and the camera's true roll since the reference
+  // read, or dropped) and the truth in the same convention (the content's turn, +x towards
+  // +y: the camera's roll since the reference, negated)
   std::vector<double> roll_read_deg;
   std::vector<double> roll_true_deg;
   // The predictive controller's pan axis after each frame (NaN: another controller, or a

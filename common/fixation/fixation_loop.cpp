@@ -164,16 +164,15 @@ void FixationLoop::StoreExposure(const cv::Mat& plane) {
 bool FixationLoop::HoldsView(const cv::Mat& plane, const cv::Point2d& displacement,
                              Step* step) const {
   const double patch_px = std::hypot(displacement.x, displacement.y);
-  if (!options_.roll_aware_claim) return patch_px <= options_.off_target_px;
+  if (patch_px > options_.off_target_px) return false;
+  if (!options_.roll_aware_claim) return true;
   // [px] the patch centre from the frame centre, and the most a roll in range moves it
   const cv::Point2d offset(patch_.x + 0.5 * (patch_.width - 1) - 0.5 * (plane.cols - 1),
                            patch_.y + 0.5 * (patch_.height - 1) - 0.5 * (plane.rows - 1));
   const double reach =
       std::hypot(offset.x, offset.y) * std::sin(options_.roll.max_deg * std::numbers::pi / 180);
-  // No roll in range could carry the centre across the line: the patch decides.
-  if (std::abs(patch_px - options_.off_target_px) >= reach) {
-    return patch_px <= options_.off_target_px;
-  }
+  // No roll in range could carry the centre beyond the line: the patch decides.
+  if (options_.off_target_px - patch_px >= reach) return true;
   const std::optional<PatchRoll> roll =
       ReadPatchRoll(reference_->image(), patch_, plane, step->match.displacement, options_.roll);
   // A roll in range could carry the centre across the line and none could be read (the

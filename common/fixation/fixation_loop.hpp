@@ -61,10 +61,12 @@ struct FixationOptions {
   double off_target_px = 8;
   // The claim allows for roll (stored reference only): a patch held r px from the frame
   // centre leaves the centre roll × r off, so when a roll within roll.max_deg could carry the
-  // centre across off_target_px, the roll is read from the patch (ReadPatchRoll) and the
-  // centre's displacement (CentreDisplacement) is judged instead of the patch's: either way,
-  // a patch held beside a centre that is not, or a patch off beside a centre held. Off: the
-  // patch's displacement alone.
+  // centre beyond off_target_px, the roll is read from the patch (ReadPatchRoll) and the
+  // centre's displacement (CentreDisplacement) must be within it too: a patch held beside a
+  // centre that is not is no held view. A patch measured beyond the line is never claimed,
+  // whatever roll is read: on a façade's repeats the roll read can be confidently wrong
+  // (building.jpg, no roll at all: 2-3.5°), and it made claims at 10-14 px. Off: the patch's
+  // displacement alone.
   bool roll_aware_claim = true;
   PatchRollOptions roll;
   // Scale each frame to the stored reference's mean brightness before the search

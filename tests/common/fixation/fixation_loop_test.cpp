@@ -303,16 +303,18 @@ TEST(FixationLoopTest, AnOffCentrePatchHeldUnderRollIsSaidOffTargetWhenTheCentre
   }
 }
 
-TEST(FixationLoopTest, AnOffCentrePatchUnderRollWhoseCentreIsHeldIsClaimedOnTarget) {
+// The patch measured beyond the line (8.4 px) while the roll puts the centre 1 px off: the
+// claim is not made on the roll read alone, which on a façade's repeats can be confidently
+// wrong (building.jpg without roll read 2-3.5°, and frames 10-14 px off were claimed).
+TEST(FixationLoopTest, APatchMeasuredBeyondTheLineIsNotClaimedWhateverTheRollRead) {
   FixationOptions o = Options();
   o.slice = 8;
   FixationLoop loop(o, Pyr(), PlainP(), kLens);
   loop.SetReference(RolledView(0, 0));
-  // The patch measured beyond the line (8.4 px), the centre 1 px off: held.
   const FixationLoop::Step step = loop.Process(RolledView(-3, 1), {}, 0.04);
   ASSERT_TRUE(step.trusted);
   ASSERT_GT(std::hypot(step.match.displacement.x, step.match.displacement.y), 8);
-  EXPECT_FALSE(step.off_target);
+  EXPECT_TRUE(step.off_target);
 }
 
 // The patch is held 3 px off, but a roll in range could put the centre 16 px away, and the
