@@ -104,8 +104,8 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
           "frame {}: match not trusted (confidence {:.2f}, ambiguous or poor): re-acquiring the "
           "stored reference; {}",
           frame.index, outcome.step.match.confidence,
-          reference_angles_ ? "the servos return to where it was taken"
-                            : "the servos hold (where it was taken is not known)");
+          loop_->swing_centre() ? "the servos head for the centre of the swing seen"
+                                : "the servos hold (no swing of this view seen yet)");
     } else {
       spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
     }

@@ -27,8 +27,8 @@ struct ControlInput {
   // own may act on it until its estimate is first trusted.
   double pan_deg_per_px_hint = 0.0;
   double tilt_deg_per_px_hint = 0.0;
-  // [deg] Set while the lock is lost (FixationLoop): the angles the stored reference was seen
-  // through. With no measurement the servos head there at the rate limit instead of holding,
+  // [deg] Set while the lock is lost (FixationLoop): the centre of the swing seen while the
+  // view was tracked (FixationLoop::swing_centre). With no measurement the servos head there at the rate limit instead of holding,
   // so that the free swing carries the view past the reference, where the widened search can
   // find it again; held where a wrong match or a forecast left them, the view stays off by
   // that much for as long as the loss lasts (baboon.jpg after SSP: 92 px RMS against the

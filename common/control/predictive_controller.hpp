@@ -51,7 +51,7 @@ struct PredictiveOptions {
 // band holds an axis whose correction is smaller than the gains' one; the rate limit applies
 // last; I and D are not used. A frame without a measurement is bridged by the forecast for a
 // few frames, then the servos hold; while the lock is lost (ControlInput::return_to) they
-// head back to where the reference was seen instead.
+// head for the return point the loop gives (the centre of the swing seen) instead.
 class PredictiveController final : public Controller {
  public:
   // Throws std::invalid_argument for gains, calibration or options that are not IsValid.

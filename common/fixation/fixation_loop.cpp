@@ -49,6 +49,9 @@ bool FixationOptions::IsValid(std::string* error) const {
   if (lock_regain_frames < 1) {
     return fail("lock-regain frames must be ≥ 1, got " + std::to_string(lock_regain_frames));
   }
+  if (swing_centre_frames < 1) {
+    return fail("swing-centre frames must be ≥ 1, got " + std::to_string(swing_centre_frames));
+  }
   if (lock_lost_frames < 1) {
     return fail("lock-lost frames must be ≥ 1, got " + std::to_string(lock_lost_frames));
   }
@@ -76,6 +79,7 @@ void FixationLoop::SetCalibration(const LensCalibration& calibration) {
   std::string error;
   if (!calibration.IsValid(&error)) throw std::invalid_argument("FixationLoop: " + error);
   controller_->SetCalibration(calibration);
+  calibration_ = calibration;
 }
 
 cv::Mat FixationLoop::Plane(const cv::Mat& frame_bgr) const {
@@ -93,7 +97,12 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr,
       SlicePatch(plane.size(), options_.slice_count, options_.slice, options_.patch_size);
   samples_ = SampleSet({patch}, options_.sampling);
   reference_.emplace(plane, samples_);
-  reference_angles_ = seen_through;
+  centre_samples_.clear();
+  centre_sum_ = {};
+  if (seen_through) {
+    centre_samples_.push_back(*seen_through);
+    centre_sum_ = *seen_through;
+  }
   StoreExposure(plane);
   patch_ = patch;
   origin_ = options_.search.origin;
@@ -186,6 +195,36 @@ bool FixationLoop::HoldsView(const cv::Mat& plane, const cv::Point2d& displaceme
   return std::hypot(centre.x, centre.y) <= options_.off_target_px;
 }
 
+void FixationLoop::AddCentreSample(const ServoTargets& current, const cv::Point2d& displacement) {
+  // The degrees the controller itself believes, once it trusts its own estimate (the stored
+  // calibration may be 1.3 × off); the error it leaves is that of a displacement of a few px.
+  const std::optional<ControlEstimate> estimate = controller_->estimate();
+  const auto deg_per_px = [](const std::optional<ControlEstimate::Axis>& axis, double stored) {
+    return axis && axis->trusted ? axis->deg_per_px : stored;
+  };
+  const ServoTargets sample{
+      current.pan_deg +
+          displacement.x * deg_per_px(estimate ? std::optional(estimate->pan) : std::nullopt,
+                                      calibration_.pan_deg_per_px),
+      current.tilt_deg +
+          displacement.y * deg_per_px(estimate ? std::optional(estimate->tilt) : std::nullopt,
+                                      calibration_.tilt_deg_per_px)};
+  centre_samples_.push_back(sample);
+  centre_sum_.pan_deg += sample.pan_deg;
+  centre_sum_.tilt_deg += sample.tilt_deg;
+  if (static_cast<int>(centre_samples_.size()) > options_.swing_centre_frames) {
+    centre_sum_.pan_deg -= centre_samples_.front().pan_deg;
+    centre_sum_.tilt_deg -= centre_samples_.front().tilt_deg;
+    centre_samples_.pop_front();
+  }
+}
+
+std::optional<ServoTargets> FixationLoop::swing_centre() const {
+  if (centre_samples_.empty()) return std::nullopt;
+  const double n = static_cast<double>(centre_samples_.size());
+  return ServoTargets{centre_sum_.pan_deg / n, centre_sum_.tilt_deg / n};
+}
+
 cv::Point2d FixationLoop::OnSearchedAxes(cv::Point2d displacement) const {
   if (options_.search.axis == SearchAxis::kX) displacement.y = 0;
   if (options_.search.axis == SearchAxis::kY) displacement.x = 0;
@@ -236,6 +275,8 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   step.off_target = step.lock_lost || !step.trusted || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     displacement = FollowStep(plane, displacement);
+  } else if (step.trusted) {
+    AddCentreSample(current, displacement);
   }
 
   ControlInput input;
@@ -243,7 +284,7 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   input.confidence = step.match.confidence;
   input.found = step.trusted;
   input.dt_s = dt_s;
-  if (reacquiring_ && stored) input.return_to = reference_angles_;
+  if (reacquiring_ && stored) input.return_to = swing_centre();
   step.targets = controller_->Update(input, current);
   step.estimate = controller_->estimate();
   return finish();

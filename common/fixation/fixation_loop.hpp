@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deque>
 #include <limits>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -41,6 +42,15 @@ struct FixationOptions {
   // in a row (a single lucky frame on a repetitive texture must not snap to a neighbour).
   double reacquire_range_factor = 2.0;
   int lock_regain_frames = 3;
+  // [frames] While the lock is lost the servos head for the centre of the swing seen while the
+  // view was tracked (stored reference only): the mean, over the last this many trusted
+  // frames and the reference frame itself, of the angles that would have centred the view
+  // (the angles seen through plus the measured displacement in degrees). Held still there,
+  // the view swings about the reference instead of about the point where the reference was
+  // taken, which may be the swing's far end (left01.jpg after SSP, seed 1: 48.6 px RMS with
+  // the servos back at the reference's angles, against 26.1 px about the swing's centre).
+  // A few periods of a kite's swing; 1 returns to the last trusted frame's view.
+  int swing_centre_frames = 300;
   // A lock is confirmed (after the reference, or when re-acquired) only by lock_regain_frames
   // frames in a row at or above this confidence, a margin above lock_lost_confidence
   // (hysteresis): on a repetitive texture the confidence hovers around the trust threshold
@@ -111,6 +121,7 @@ class FixationLoop {
   // the controller and the lock. `seen_through` [deg]: the servo angles the frame was
   // captured through, where a lost lock sends the servos back (ControlInput::return_to);
   // unknown (a view taken up after a restart): a lost lock holds them where they are.
+  // The reference frame is the first sample of the swing's centre a lost lock heads for.
   // Throws std::invalid_argument when the patch does not fit.
   void SetReference(const cv::Mat& frame_bgr,
                     std::optional<ServoTargets> seen_through = std::nullopt);
@@ -143,6 +154,10 @@ class FixationLoop {
   // `current`: the servo angles `frame_bgr` was captured through; `dt_s`: time since the
   // previous frame. Without a reference the servos hold and the lock is reported lost.
   Step Process(const cv::Mat& frame_bgr, const ServoTargets& current, double dt_s);
+  // [deg] Where a lost lock sends the servos (stored reference): the centre of the swing seen
+  // while the view was tracked (swing_centre_frames); none when neither the reference's
+  // angles nor a trusted frame are known (a lost lock then holds the servos).
+  std::optional<ServoTargets> swing_centre() const;
 
   void SetCalibration(const LensCalibration& calibration);
   // New operator gains for the controller, keeping its history (bumpless; issue 15 item 7).
@@ -165,6 +180,9 @@ class FixationLoop {
   bool HoldsView(const cv::Mat& plane, const cv::Point2d& displacement, Step* step) const;
   // [px] `displacement` with the axis that is not searched set to 0.
   cv::Point2d OnSearchedAxes(cv::Point2d displacement) const;
+  // Adds this trusted frame's centring angles (`current` plus `displacement` in degrees,
+  // through the controller's trusted estimate or the calibration) to the swing's centre.
+  void AddCentreSample(const ServoTargets& current, const cv::Point2d& displacement);
   // Follow (previous-frame reference): adds `frame_step` [px] to the leaky sum, makes
   // `plane` the next reference, and returns the sum [px].
   cv::Point2d FollowStep(const cv::Mat& plane, const cv::Point2d& frame_step);
@@ -175,7 +193,11 @@ class FixationLoop {
   SampleSet samples_;
   cv::Rect patch_;
   std::optional<ReferencePatch> reference_;
-  std::optional<ServoTargets> reference_angles_;  // [deg] the reference was seen through
+  LensCalibration calibration_;
+  // [deg] the angles that would have centred the view, per trusted frame (and the reference
+  // frame's angles first), and their sum: the lost lock's return point is their mean.
+  std::deque<ServoTargets> centre_samples_;
+  ServoTargets centre_sum_;
   ExposureCompensation exposure_;                 // to the reference's brightness (off: gain 1)
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps

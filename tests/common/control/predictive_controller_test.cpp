@@ -124,8 +124,8 @@ TEST(PredictiveControllerTest, CoastsThroughAShortDropoutThenHolds) {
 }
 
 // A lost lock (ControlInput::return_to): no bridging on a forecast fitted to what may have
-// been wrong matches; the servos head back to where the reference was seen, at the rate limit.
-TEST(PredictiveControllerTest, ALostLockHeadsForTheReferenceAnglesInsteadOfCoasting) {
+// been wrong matches; the servos head for the return point the loop gives, at the rate limit.
+TEST(PredictiveControllerTest, ALostLockHeadsForTheReturnPointInsteadOfCoasting) {
   ControllerGains gains = NoDeadBand();
   gains.rate_limit_deg_per_s = 25;  // 1° per 0.04 s frame
   PredictiveController controller(gains, {0.1, 0.1}, Lead(2));

@@ -105,42 +105,101 @@ TEST(FixationLoopTest, LockIsLostAfterTheConfiguredRunOfUntrustedFrames) {
   EXPECT_FALSE(loop.Process(blank, {}, 0.04).lock_lost);
   const FixationLoop::Step third = loop.Process(blank, {1.0, 1.0}, 0.04);
   EXPECT_TRUE(third.lock_lost);
-  EXPECT_DOUBLE_EQ(third.targets.pan_deg, 1.0);  // untrusted: the servos hold
+  // Lost: the servos head for the centre of the swing seen, the reference view at 0°.
+  EXPECT_NEAR(third.targets.pan_deg, 0.0, 0.01);
 }
 
-// A lost lock sends the servos back to where the reference was seen, not holding them where
-// the last (perhaps wrong) matches left them: the free swing then carries the view past the
-// reference, where the widened search can find it (baboon.jpg after SSP: parked 65 px off,
-// 92 px RMS against the swing's own 38).
-TEST(FixationLoopTest, ALostLockSendsTheServosBackToWhereTheReferenceWasSeen) {
+// A lost lock sends the servos to the centre of the swing seen while the view was tracked,
+// not holding them where the last (perhaps wrong) matches left them (baboon.jpg after SSP:
+// parked 65 px off, 92 px RMS against the swing's own 38), nor back to where the reference
+// was seen, which may be the swing's far end (left01.jpg after SSP: 48.6 px against 26.1
+// about the swing's centre). The centre is the mean of the angles that centred the view: the
+// reference's, then each trusted frame's angles plus its displacement in degrees.
+TEST(FixationLoopTest, ALostLockSendsTheServosToTheCentreOfTheSwingSeen) {
   FixationOptions o = Options();
   o.lock_lost_frames = 2;
   FixationLoop loop(o, Pyr(), PlainP(), kLens);
   const cv::Mat reference = Texture();
   loop.SetReference(reference, ServoTargets{-2.0, 3.0});
-  ConfirmLock(loop, reference);
+  // Seen 6 px right and 4 px up through (1, 1): centred at (1.6, 0.6), three times.
+  for (int k = 0; k < o.lock_regain_frames; ++k) {
+    ASSERT_TRUE(loop.Process(testing::Translated(reference, 6, -4), {1.0, 1.0}, 0.04).trusted);
+  }
   const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
   const FixationLoop::Step first = loop.Process(blank, {5.0, -1.0}, 0.04);
   ASSERT_FALSE(first.lock_lost);
   EXPECT_DOUBLE_EQ(first.targets.pan_deg, 5.0);  // a confirmed lock rides it out, holding
   const FixationLoop::Step lost = loop.Process(blank, {5.0, -1.0}, 0.04);
   ASSERT_TRUE(lost.lock_lost);
-  EXPECT_DOUBLE_EQ(lost.targets.pan_deg, -2.0);
-  EXPECT_DOUBLE_EQ(lost.targets.tilt_deg, 3.0);
+  EXPECT_NEAR(lost.targets.pan_deg, (-2.0 + 3 * 1.6) / 4, 0.015);
+  EXPECT_NEAR(lost.targets.tilt_deg, (3.0 + 3 * 0.6) / 4, 0.015);
 }
 
-TEST(FixationLoopTest, ALostLockOfAViewWhoseAnglesAreUnknownHoldsTheServos) {
+// The centre forgets trusted frames older than swing_centre_frames (the line's slow sway
+// moves it), the reference's own angles among them.
+TEST(FixationLoopTest, TheSwingsCentreForgetsFramesBeyondItsWindow) {
+  FixationOptions o = Options();
+  o.swing_centre_frames = 2;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference, ServoTargets{-2.0, 3.0});
+  ASSERT_TRUE(loop.Process(testing::Translated(reference, 6, 0), {1.0, 1.0}, 0.04).trusted);
+  ASSERT_TRUE(loop.Process(testing::Translated(reference, -4, 0), {2.0, 1.0}, 0.04).trusted);
+  ASSERT_TRUE(loop.Process(testing::Translated(reference, 2, 0), {1.0, 2.0}, 0.04).trusted);
+  const std::optional<ServoTargets> centre = loop.swing_centre();
+  ASSERT_TRUE(centre);
+  EXPECT_NEAR(centre->pan_deg, (1.6 + 1.2) / 2, 0.015);
+  EXPECT_NEAR(centre->tilt_deg, (1.0 + 2.0) / 2, 0.015);
+}
+
+// A view taken up after a restart has no known angles: until a frame is trusted there is no
+// swing seen, and a lost lock holds the servos where they are.
+TEST(FixationLoopTest, ALostLockWithNoAnglesAndNoTrustedFrameHoldsTheServos) {
   FixationOptions o = Options();
   o.lock_lost_frames = 1;
   FixationLoop loop(o, Pyr(), PlainP(), kLens);
-  const cv::Mat reference = Texture();
-  loop.SetReference(reference);
-  ConfirmLock(loop, reference);
+  loop.SetReference(Texture());
+  EXPECT_FALSE(loop.swing_centre());
   const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
   const FixationLoop::Step lost = loop.Process(blank, {5.0, -1.0}, 0.04);
   ASSERT_TRUE(lost.lock_lost);
   EXPECT_DOUBLE_EQ(lost.targets.pan_deg, 5.0);
   EXPECT_DOUBLE_EQ(lost.targets.tilt_deg, -1.0);
+}
+
+// The centre is in the degrees the controller acts on: once it trusts its own estimate of
+// the lens, that one, not the stored calibration.
+TEST(FixationLoopTest, TheSwingsCentreUsesTheControllersTrustedEstimate) {
+  // P that reports an estimate of its own.
+  class EstimatingP : public Controller {
+   public:
+    ServoTargets Update(const ControlInput& input, const ServoTargets& current) override {
+      return p_->Update(input, current);
+    }
+    void Reset() override { p_->Reset(); }
+    std::string name() const override { return "estimating p"; }
+    void SetCalibration(const LensCalibration& calibration) override {
+      p_->SetCalibration(calibration);
+    }
+    void SetGains(const ControllerGains& gains) override { p_->SetGains(gains); }
+    std::optional<ControlEstimate> estimate() const override {
+      ControlEstimate e;
+      e.pan = {0.2, 0.01, true, 0};
+      e.tilt = {0.3, 1.0, false, 0};  // not trusted: the stored 0.1
+      return e;
+    }
+
+   private:
+    std::unique_ptr<Controller> p_ = PlainP();
+  };
+  FixationLoop loop(Options(), Pyr(), std::make_unique<EstimatingP>(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  ASSERT_TRUE(loop.Process(testing::Translated(reference, 5, 5), {1.0, 1.0}, 0.04).trusted);
+  const std::optional<ServoTargets> centre = loop.swing_centre();
+  ASSERT_TRUE(centre);
+  EXPECT_NEAR(centre->pan_deg, 1.0 + 5 * 0.2, 0.03);
+  EXPECT_NEAR(centre->tilt_deg, 1.0 + 5 * 0.1, 0.03);
 }
 
 // Re-acquired, the measurement steers again: the return ends with the loss.
