@@ -28,11 +28,11 @@ struct ControlInput {
   double pan_deg_per_px_hint = 0.0;
   double tilt_deg_per_px_hint = 0.0;
   // [deg] Set while the lock is lost (FixationLoop): the centre of the swing seen while the
-  // view was tracked (FixationLoop::swing_centre). With no measurement the servos head there at the rate limit instead of holding,
-  // so that the free swing carries the view past the reference, where the widened search can
-  // find it again; held where a wrong match or a forecast left them, the view stays off by
-  // that much for as long as the loss lasts (baboon.jpg after SSP: 92 px RMS against the
-  // swing's own 38). None: hold.
+  // view was tracked (FixationLoop::swing_centre). With no measurement the servos head there
+  // at the rate limit instead of holding, so that the swing carries the view about the
+  // reference, where the widened search can find it again; held where a wrong match or a
+  // forecast left them, the view stays off by that much for as long as the loss lasts
+  // (baboon.jpg after SSP: 92 px RMS against the swing's own 38). None: hold.
   std::optional<ServoTargets> return_to;
 };
 

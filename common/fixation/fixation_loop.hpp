@@ -198,7 +198,7 @@ class FixationLoop {
   // frame's angles first), and their sum: the lost lock's return point is their mean.
   std::deque<ServoTargets> centre_samples_;
   ServoTargets centre_sum_;
-  ExposureCompensation exposure_;                 // to the reference's brightness (off: gain 1)
+  ExposureCompensation exposure_;  // to the reference's brightness (off: gain 1)
   cv::Point origin_{0, 0};
   cv::Point2d follow_sum_{0, 0};  // [px] leaky sum of the follow steps
   int untrusted_frames_ = 0;
