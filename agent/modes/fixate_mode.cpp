@@ -104,7 +104,7 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
           "frame {}: match not trusted (confidence {:.2f}, ambiguous or poor): re-acquiring the "
           "stored reference; {}",
           frame.index, outcome.step.match.confidence,
-          loop_->swing_centre() ? "the servos head for the centre of the swing seen"
+          loop_->swing_centre() ? "the servos head for the centre of the view's swing seen so far"
                                 : "the servos hold (no swing of this view seen yet)");
     } else {
       spdlog::info("frame {}: stored reference re-acquired, lock trusted again", frame.index);
