@@ -199,16 +199,12 @@ void FixationLoop::AddCentreSample(const ServoTargets& current, const cv::Point2
   // The degrees the controller itself believes, once it trusts its own estimate (the stored
   // calibration may be 1.3 × off); the error it leaves is that of a displacement of a few px.
   const std::optional<ControlEstimate> estimate = controller_->estimate();
-  const auto deg_per_px = [](const std::optional<ControlEstimate::Axis>& axis, double stored) {
-    return axis && axis->trusted ? axis->deg_per_px : stored;
-  };
-  const ServoTargets sample{
-      current.pan_deg +
-          displacement.x * deg_per_px(estimate ? std::optional(estimate->pan) : std::nullopt,
-                                      calibration_.pan_deg_per_px),
-      current.tilt_deg +
-          displacement.y * deg_per_px(estimate ? std::optional(estimate->tilt) : std::nullopt,
-                                      calibration_.tilt_deg_per_px)};
+  const double pan_deg_per_px =
+      estimate && estimate->pan.trusted ? estimate->pan.deg_per_px : calibration_.pan_deg_per_px;
+  const double tilt_deg_per_px =
+      estimate && estimate->tilt.trusted ? estimate->tilt.deg_per_px : calibration_.tilt_deg_per_px;
+  const ServoTargets sample{current.pan_deg + displacement.x * pan_deg_per_px,
+                            current.tilt_deg + displacement.y * tilt_deg_per_px};
   centre_samples_.push_back(sample);
   centre_sum_.pan_deg += sample.pan_deg;
   centre_sum_.tilt_deg += sample.tilt_deg;

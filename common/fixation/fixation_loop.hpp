@@ -119,9 +119,9 @@ class FixationLoop {
 
   // Stores the reference patch at the slice of `frame_bgr` (BGR or grey, 8 bit) and resets
   // the controller and the lock. `seen_through` [deg]: the servo angles the frame was
-  // captured through, where a lost lock sends the servos back (ControlInput::return_to);
-  // unknown (a view taken up after a restart): a lost lock holds them where they are.
-  // The reference frame is the first sample of the swing's centre a lost lock heads for.
+  // captured through, the first sample of the swing's centre a lost lock heads for
+  // (swing_centre); unknown (a view taken up after a restart): a lost lock holds the servos
+  // until a frame is trusted.
   // Throws std::invalid_argument when the patch does not fit.
   void SetReference(const cv::Mat& frame_bgr,
                     std::optional<ServoTargets> seen_through = std::nullopt);
