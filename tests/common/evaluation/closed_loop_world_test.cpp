@@ -168,6 +168,29 @@ TEST(ClosedLoopJitterTest, ACalibrationOffCostsLittleMoreThanTheJitterAlone) {
       << " px";
 }
 
+// The realistic world's fastest lock-on (seed 3: the view moves up to 12 px a frame): the
+// servo belief stays on the angle the servo showed. Deciding each frame alone, it drifted off
+// through runs of late commands (views blended between two candidates carried their error
+// into the next frame's extrapolation); it keeps hypotheses until a frame tells them apart.
+TEST(ClosedLoopJitterTest, TheServoBeliefStaysOnTheServoThroughARealisticLockOn) {
+  ClosedLoopOptions options;
+  options.frames = 150;
+  options.world = WorldOptions::Realistic();
+  options.platform.kite.seed = options.platform.camera.seed = 3;
+  const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("aero1.jpg"), options);
+  ASSERT_EQ(f.believed.size(), f.angles.size());
+  double miss_sq = 0;
+  int counted = 0;
+  for (std::size_t k = 40; k < f.angles.size(); ++k) {
+    if (!std::isfinite(f.believed[k].pan_deg)) continue;
+    miss_sq += std::pow(f.believed[k].pan_deg - f.angles[k].pan_deg, 2);
+    ++counted;
+  }
+  ASSERT_GT(counted, 80);
+  const double miss_px = std::sqrt(miss_sq / counted) * options.platform.px_per_deg;
+  EXPECT_LT(miss_px, 1.5) << "the belief's RMS miss of the pan servo " << miss_px << " px";
+}
+
 // A frame the camera drops is not seen, so the loop claims nothing for it: it counts in
 // gross but never as silent (as in the agent's flight report, which has no record of it).
 // Counted under the previous frame's claim, 3 dropped frames in 500 made board.jpg's realistic
