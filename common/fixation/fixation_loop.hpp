@@ -62,12 +62,12 @@ struct FixationOptions {
   // again (lock_lost false) only once the measured displacement is within this: found 60 px
   // away, the view is not held yet (stored reference only; follow has no such view).
   double lock_regain_px = 10;
-  // [px] The loop says it holds the view (Step::off_target false) only while the lock is held,
-  // this frame's match is trusted and its measured displacement is within this. A right match
-  // that measures the view 25 px away (the loop trailing a gust, the first frames of the
-  // pull-in) is no lost lock, but it is no held view either, and the operator must hear so.
-  // Below the report's 10 px gross threshold by the matcher's miss (0.1-0.5 px RMS in the
-  // simulated worlds) and a margin, so that a frame claimed on target is not 10.3 px off.
+  // [px] The loop says it holds the view (Step::off_target false) only while the lock is held
+  // (not riding out untrusted frames), this frame's match is trusted and its measured displacement
+  // is within this. A right match that measures the view 25 px away (the loop trailing a gust, the
+  // first frames of the pull-in) is no lost lock, but it is no held view either, and the operator
+  // must hear so. Below the report's 10 px gross threshold by the matcher's miss (0.1-0.5 px RMS in
+  // the simulated worlds) and a margin, so that a frame claimed on target is not 10.3 px off.
   double off_target_px = 8;
   // The claim allows for roll (stored reference only): a patch held r px from the frame
   // centre leaves the centre roll × r off, so when a roll within roll.max_deg could carry the
@@ -139,8 +139,9 @@ class FixationLoop {
     // The match steered the servos this frame (confident, and the lock not being re-acquired).
     bool trusted = false;
     bool reacquiring = false;  // the search was widened around the stored reference
-    // The loop does not claim to hold the view: the lock is lost, this frame's match is not
-    // trusted, or it measures the view farther than off_target_px (issue 9's honest lock).
+    // The loop does not claim to hold the view: the lock is lost or riding out untrusted
+    // frames, this frame's match is not trusted, or it measures the view farther than
+    // off_target_px (issue 9's honest lock).
     bool off_target = true;
     // [deg] the roll read from the patch for the claim above; NaN when it was not needed
     // (the patch's displacement alone decided) or could not be read.
