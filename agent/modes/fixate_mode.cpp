@@ -115,16 +115,24 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
   // log says when it starts, at most once per kOffTargetLogFrames with the count since the last
   // line, or a gusty flight would write a line every few frames.
   const FixationLoop::Step& step = outcome.step;
+  // A lock riding out untrusted frames steers by the trusted ones but claims none of them.
   const bool trailing = !step.lock_lost && step.trusted && step.off_target;
   off_target_frames_ += step.off_target ? 1 : 0;
   const bool quiet_long_enough =
       !last_off_target_log_ || frame.index >= *last_off_target_log_ + kOffTargetLogFrames;
   if (trailing && !trailing_ && quiet_long_enough) {
-    spdlog::info(
-        "frame {}: view {:.1f} px off target, the loop trails it (lock held); {} frames off "
-        "target since the last such line",
-        frame.index, std::hypot(step.match.displacement.x, step.match.displacement.y),
-        off_target_frames_);
+    const double off_px = std::hypot(step.match.displacement.x, step.match.displacement.y);
+    if (step.riding_out) {
+      spdlog::info(
+          "frame {}: view {:.1f} px off, not claimed: the lock rides out untrusted frames until "
+          "{} clear ones in a row; {} frames off target since the last such line",
+          frame.index, off_px, loop_->options().lock_regain_frames, off_target_frames_);
+    } else {
+      spdlog::info(
+          "frame {}: view {:.1f} px off target, the loop trails it (lock held); {} frames off "
+          "target since the last such line",
+          frame.index, off_px, off_target_frames_);
+    }
     last_off_target_log_ = frame.index;
     off_target_frames_ = 0;
   }

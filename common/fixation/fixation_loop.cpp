@@ -272,8 +272,8 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   // row) still steers by the trusted frames between them, but is not vouched for: those
   // frames barely pass the trust threshold (baboon.jpg after SSP, realistic world: claimed
   // at confidence 0.22-0.38 with the matcher 5 px short, 10-13 px off).
-  const bool riding_out = untrusted_frames_ > 0;
-  step.off_target = step.lock_lost || !step.trusted || riding_out || !held_view;
+  step.riding_out = !step.lock_lost && untrusted_frames_ > 0;
+  step.off_target = step.lock_lost || !step.trusted || step.riding_out || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     displacement = FollowStep(plane, displacement);
   } else if (step.trusted) {

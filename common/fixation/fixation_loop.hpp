@@ -143,6 +143,9 @@ class FixationLoop {
     // frames, this frame's match is not trusted, or it measures the view farther than
     // off_target_px (issue 9's honest lock).
     bool off_target = true;
+    // The lock rides out untrusted frames (after one, until lock_regain_frames clear frames in
+    // a row): the trusted frames between still steer, but none is claimed (off_target).
+    bool riding_out = false;
     // [deg] the roll read from the patch for the claim above; NaN when it was not needed
     // (the patch's displacement alone decided) or could not be read.
     double roll_deg = std::numeric_limits<double>::quiet_NaN();

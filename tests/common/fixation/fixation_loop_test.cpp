@@ -421,8 +421,11 @@ TEST(FixationLoopTest, ALockRidingOutUntrustedFramesIsClaimedOnlyOnceItStandsCle
     const FixationLoop::Step step = loop.Process(reference, {}, 0.04);
     EXPECT_TRUE(step.trusted) << "frame " << k << " steers";
     EXPECT_TRUE(step.off_target) << "frame " << k << " is not yet vouched for";
+    EXPECT_TRUE(step.riding_out) << "frame " << k;
   }
-  EXPECT_FALSE(loop.Process(reference, {}, 0.04).off_target);
+  const FixationLoop::Step clear = loop.Process(reference, {}, 0.04);
+  EXPECT_FALSE(clear.off_target);
+  EXPECT_FALSE(clear.riding_out);
 }
 
 TEST(FixationLoopTest, RejectsANonPositiveOffTargetDistance) {
