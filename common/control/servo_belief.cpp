@@ -255,8 +255,9 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
   // Without views to extrapolate, no path can tell the candidates apart: the belief is their
   // expected angle, while the paths keep each candidate as a hypothesis.
   const bool extrapolated = !a.paths.front().views.empty();
-  const double expected = Expected(axis);
   const std::size_t allowed = InEffectOrNewer(a.candidates, a.paths.front().in_effect).size();
+  // Before the paths move on: the mean over the candidates the best path allows.
+  const double expected = extrapolated || allowed == 1 ? 0.0 : Expected(axis);
   ExtendPaths(&a, displacement_px, scales_[a.scale] / deg_per_px);
   // Scored only where the latency jitters: with one candidate the scale changes nothing.
   if (allowed > 1) ScoreScales(&a, 1.0 / deg_per_px);

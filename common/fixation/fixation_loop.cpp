@@ -265,14 +265,16 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   cv::Point2d displacement =
       OnSearchedAxes(step.trusted ? step.match.displacement : cv::Point2d(0, 0));
 
-  // Follow has no stored view to be on or off: its claim is the trusted lock alone.
-  const bool held_view = options_.reference == FixationOptions::Reference::kPrevious ||
-                         (step.trusted && HoldsView(plane, displacement, &step));
   // A lock riding out untrusted frames (its grace, until lock_regain_frames clear frames in a
   // row) still steers by the trusted frames between them, but is not vouched for: those
   // frames barely pass the trust threshold (baboon.jpg after SSP, realistic world: claimed
-  // at confidence 0.22-0.38 with the matcher 5 px short, 10-13 px off).
+  // at confidence 0.22-0.38 with the matcher 5 px short, 10-13 px off). Such a frame's view
+  // is not judged (no roll read): the claim is off whatever it shows.
   step.riding_out = !step.lock_lost && untrusted_frames_ > 0;
+  // Follow has no stored view to be on or off: its claim is the trusted lock alone.
+  const bool held_view =
+      options_.reference == FixationOptions::Reference::kPrevious ||
+      (step.trusted && !step.riding_out && HoldsView(plane, displacement, &step));
   step.off_target = step.lock_lost || !step.trusted || step.riding_out || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     displacement = FollowStep(plane, displacement);
