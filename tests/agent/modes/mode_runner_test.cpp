@@ -1,6 +1,7 @@
 // ModeRunner on the frames of a synthetic free swing: fixate takes its reference from the
 // first frame; SSP and PSS finish at their deadline with a report and fall back to idle; the
-// slice and the settings change between frames; a free swing is recorded as CSV.
+// slice and the settings change between frames; a free swing is recorded as CSV; a held lock
+// that trails the view and one riding out untrusted frames are logged apart.
 #include "agent/modes/mode_runner.hpp"
 
 #include <gtest/gtest.h>
@@ -84,12 +85,12 @@ ModeRunnerOptions Options(AgentMode start, const std::string& recordings_dir = "
 // [px] window positions of the swing the frames are cut from.
 std::vector<int> Positions(int frames) { return kapfix::testing::PendulumPositions(frames, 8, 12); }
 
-// BGR frames of a free swing along x, numbered from `first_index`.
-std::vector<CapturedFrame> Swing(int frames, std::uint64_t first_index = 0) {
+// BGR frames cut at these window positions [px] along x, numbered from `first_index`.
+std::vector<CapturedFrame> FramesAt(const std::vector<int>& positions,
+                                    std::uint64_t first_index = 0) {
   cv::Mat scene;
   cv::cvtColor(kapfix::testing::SmoothTexture({320, 220}, 5), scene, cv::COLOR_GRAY2BGR);
-  const std::vector<cv::Mat> images =
-      kapfix::testing::SwingFrames(scene, kFrame, Positions(frames));
+  const std::vector<cv::Mat> images = kapfix::testing::SwingFrames(scene, kFrame, positions);
   std::vector<CapturedFrame> captured;
   for (std::size_t i = 0; i < images.size(); ++i) {
     const std::uint64_t index = first_index + i;
@@ -97,6 +98,11 @@ std::vector<CapturedFrame> Swing(int frames, std::uint64_t first_index = 0) {
         CapturedFrame{images[i], static_cast<std::int64_t>(index) * kFramePeriodUs, index});
   }
   return captured;
+}
+
+// BGR frames of a free swing along x, numbered from `first_index`.
+std::vector<CapturedFrame> Swing(int frames, std::uint64_t first_index = 0) {
+  return FramesAt(Positions(frames), first_index);
 }
 
 FrameOutcome Feed(ModeRunner& runner, const CapturedFrame& frame) {
@@ -150,6 +156,43 @@ TEST(ModeRunnerTest, FixatingATexturedPatchWarnsOfNothing) {
     Feed(runner, Swing(1)[0]);
   });
   EXPECT_EQ(log.find("is weak"), std::string::npos) << log;
+}
+
+// Fixating frames at `positions` (servos still), with the frame at `flat_index` painted flat
+// (a match nothing can trust); what the agent logs.
+std::string LoggedWhileFixating(const std::vector<int>& positions, int flat_index = -1) {
+  std::vector<CapturedFrame> frames = FramesAt(positions);
+  if (flat_index >= 0) frames[flat_index].image.setTo(cv::Scalar(90, 90, 90));
+  RecordingModeEvents events;
+  return LoggedDuring([&] {
+    ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
+    for (const CapturedFrame& frame : frames) Feed(runner, frame);
+  });
+}
+
+constexpr const char* kTrailsLine = "the loop trails it (lock held)";
+constexpr const char* kRidesOutLine = "not claimed: the lock rides out untrusted frames";
+
+TEST(ModeRunnerTest, AHeldLockThatTrailsTheViewIsLoggedAsTrailing) {
+  // Four frames on the reference confirm the lock; then the view stands 16 px off (beyond
+  // FixationLoopOptions::off_target_px) on a match that is trusted.
+  const std::string log = LoggedWhileFixating({40, 40, 40, 40, 56});
+  EXPECT_NE(log.find(kTrailsLine), std::string::npos) << log;
+  EXPECT_EQ(log.find(kRidesOutLine), std::string::npos) << log;
+}
+
+TEST(ModeRunnerTest, ALockRidingOutAnUntrustedFrameIsLoggedAsNotClaimed) {
+  // The same, with an untrusted frame before the off frame: the lock rides it out and steers
+  // by the trusted frame after it, but must not call that frame a held view.
+  const std::string log = LoggedWhileFixating({40, 40, 40, 40, 40, 56}, 4);
+  EXPECT_NE(log.find(kRidesOutLine), std::string::npos) << log;
+  EXPECT_EQ(log.find(kTrailsLine), std::string::npos) << log;
+}
+
+TEST(ModeRunnerTest, AViewOnTargetIsNotLoggedAsTrailing) {
+  const std::string log = LoggedWhileFixating({40, 40, 40, 40, 42});
+  EXPECT_EQ(log.find(kTrailsLine), std::string::npos) << log;
+  EXPECT_EQ(log.find(kRidesOutLine), std::string::npos) << log;
 }
 
 TEST(ModeRunnerTest, FixateMeasuresEachFrameAgainstTheFirst) {
