@@ -22,13 +22,22 @@ ProcessOutcome RunLoopBench(const std::filesystem::path& dir, const std::string&
                     dir / "stderr.txt");
 }
 
-// 2 scenes × 2 worlds × both starts × predictive and P, 1 seed, 30 frames, with traces.
+// 2 scenes × 2 worlds × both starts × predictive and P, 1 seed, 30 frames, with traces; SSP's
+// free swing shortened to 40 frames by an agent configuration in the run's folder (it flew
+// most of the test's frames, and the test was the slowest of the suite).
 constexpr const char* kTinyMatrix =
     "--quick --frames 30 --seeds 1 --sweep-scenes 1 --scenes aero1.jpg left01.jpg --worlds "
-    "nominal realistic --start both --controllers predictive --trace --out out";
+    "nominal realistic --start both --controllers predictive --trace --out out --config "
+    "short_swing.json";
+
+void WriteShortSwingConfig(const std::filesystem::path& dir) {
+  std::ofstream(dir / "short_swing.json") << R"({"search": {"swing_frames": 40}})";
+}
 
 TEST(LoopBenchmarkTest, OutputIsTheSameByteForByteWhateverTheJobs) {
   const kapfix::testing::TempDir one, three;
+  WriteShortSwingConfig(one.path());
+  WriteShortSwingConfig(three.path());
   const ProcessOutcome serial = RunLoopBench(one.path(), std::string(kTinyMatrix) + " --jobs 1");
   const ProcessOutcome parallel =
       RunLoopBench(three.path(), std::string(kTinyMatrix) + " --jobs 3");
