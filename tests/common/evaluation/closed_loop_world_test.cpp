@@ -35,6 +35,19 @@ const ClosedLoopFigures& Nominal(const std::string& controller, bool compensate_
   return figures[key];
 }
 
+// The nominal world but for a servo latency of 1…`latency_jitter` frames, flown once per
+// controller and jitter (several tests read the same flight).
+const ClosedLoopFigures& UnderJitter(int latency_jitter, const std::string& controller) {
+  static std::map<std::pair<int, std::string>, ClosedLoopFigures> figures;
+  const std::pair key{latency_jitter, controller};
+  if (!figures.contains(key)) {
+    WorldOptions world;
+    world.latency_jitter = latency_jitter;
+    figures[key] = Fly(world, controller);
+  }
+  return figures[key];
+}
+
 struct Disturbance {
   std::string name;
   std::function<void(WorldOptions*)> turn_on;
@@ -132,10 +145,8 @@ TEST(ClosedLoopWorldOptionsTest, TheSameSeedFliesTheSameRealisticWorld) {
 // most of its lead over P. Acting on the mean of the possible commands it was worse than P
 // (aero1, 300 frames: 26.3 px against 23.6 at gain 1).
 TEST(ClosedLoopJitterTest, ThePredictiveLoopStaysWellBelowPUnderLatencyJitter) {
-  WorldOptions world;
-  world.latency_jitter = 2;
-  const ClosedLoopFigures predictive = Fly(world, "predictive");
-  const ClosedLoopFigures p = Fly(world, "p");
+  const ClosedLoopFigures& predictive = UnderJitter(2, "predictive");
+  const ClosedLoopFigures& p = UnderJitter(2, "p");
   EXPECT_LT(predictive.rms_error_px, 0.5 * p.rms_error_px)
       << "predictive " << predictive.rms_error_px << " px, P " << p.rms_error_px << " px";
 }
@@ -145,10 +156,8 @@ TEST(ClosedLoopJitterTest, ThePredictiveLoopStaysWellBelowPUnderLatencyJitter) {
 // frames: 10.5 px against P's 26.9, aim floor 6.7, 31 % gross, 0 silent). A loop that does not
 // allow for the jitter (one delay assumed) left 20.8 px.
 TEST(ClosedLoopJitterTest, ThePredictiveLoopStaysBelowPWhenACommandTakesOneToThreeFrames) {
-  WorldOptions world;
-  world.latency_jitter = 3;
-  const ClosedLoopFigures predictive = Fly(world, "predictive");
-  const ClosedLoopFigures p = Fly(world, "p");
+  const ClosedLoopFigures& predictive = UnderJitter(3, "predictive");
+  const ClosedLoopFigures& p = UnderJitter(3, "p");
   EXPECT_LT(predictive.rms_error_px, 0.6 * p.rms_error_px)
       << "predictive " << predictive.rms_error_px << " px, P " << p.rms_error_px << " px";
   EXPECT_LE(predictive.silent_gross_pct, 0.5) << "gross " << predictive.gross_pct << " %";
@@ -158,9 +167,7 @@ TEST(ClosedLoopJitterTest, ThePredictiveLoopStaysBelowPWhenACommandTakesOneToThr
 // never more than the loop itself leaves.
 TEST(ClosedLoopJitterTest, TheAimFloorIsNoneAtAFixedLatencyAndBelowTheLoopUnderJitter) {
   EXPECT_EQ(Nominal("predictive", true).aim_floor_rms_px, 0.0);
-  WorldOptions world;
-  world.latency_jitter = 2;
-  const ClosedLoopFigures jitter = Fly(world, "predictive");
+  const ClosedLoopFigures& jitter = UnderJitter(2, "predictive");
   EXPECT_GT(jitter.aim_floor_rms_px, 0.5);
   EXPECT_LT(jitter.aim_floor_rms_px, jitter.rms_error_px);
   EXPECT_EQ(jitter.open_offsets.size(), jitter.view_offsets.size());
@@ -171,11 +178,10 @@ TEST(ClosedLoopJitterTest, TheAimFloorIsNoneAtAFixedLatencyAndBelowTheLoopUnderJ
 // the lock-on rang and the flight was far worse than with an exact calibration; it now finds
 // the calibration's scale from the frames (ServoBelief::scale) and holds nearly as well.
 TEST(ClosedLoopJitterTest, ACalibrationOffCostsLittleMoreThanTheJitterAlone) {
-  WorldOptions exact;
-  exact.latency_jitter = 2;
-  WorldOptions off = exact;
+  WorldOptions off;
+  off.latency_jitter = 2;
   off.calibration_error = 1.3;
-  const ClosedLoopFigures with_exact = Fly(exact);
+  const ClosedLoopFigures& with_exact = UnderJitter(2, "predictive");
   const ClosedLoopFigures with_off = Fly(off);
   EXPECT_LT(with_off.rms_error_px, 1.3 * with_exact.rms_error_px)
       << "calibration ×1.3 " << with_off.rms_error_px << " px, exact " << with_exact.rms_error_px
