@@ -145,6 +145,30 @@ TEST(ServoBeliefTest, FindsTheCalibrationScaleAndResolvesUnderJitterWithACalibra
   EXPECT_DOUBLE_EQ(belief.scale(1), 1.0);  // tilt never moved: nothing to tell scales apart
 }
 
+// The calibration ×1.3 off (the realistic world's) is found within the lock-on's first
+// frames: every frame on the wrong scale lets the pull-in ring.
+TEST(ServoBeliefTest, FindsACalibrationOffWithinTheFirstFramesOfTheLockOn) {
+  SimulatedServo servo(JitteryServo());
+  ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
+  const LensCalibration off{1.3 * kLens.pan_deg_per_px, 1.3 * kLens.tilt_deg_per_px};
+  const auto swing = [](double t) { return 100 * std::sin(2 * std::numbers::pi * t / 40); };
+  int found_at = -1;  // the first frame from which the scale stays within a step of 1.3
+  for (int t = 0; t < 100; ++t) {
+    if (t > 0) servo.Step();
+    const double dx = -(swing(t) + servo.angle() / kLens.pan_deg_per_px);
+    belief.Expose(t);
+    belief.Resolve(Measured(dx, 0), off);
+    const bool near = std::abs(std::log(belief.scale(0) / 1.3)) < std::log(1.07);
+    if (!near) found_at = -1;
+    if (near && found_at < 0) found_at = t;
+    const double command = -1.3 * swing(t + 2.5) * kLens.pan_deg_per_px;
+    servo.Command(command);
+    belief.Sent(t, {command, 0});
+  }
+  ASSERT_GE(found_at, 0) << "scale ends at " << belief.scale(0);
+  EXPECT_LE(found_at, 10);
+}
+
 // Remembers the input of its last Update; holds the servos where they are.
 class RecordingController final : public Controller {
  public:

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""bench/loop-oracle-bound.py on synthetic traces (one behaviour per check).
+
+Usage: loop_oracle_bound_test.py SCRIPT
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+COLUMNS = ["frame", "err_x", "err_y", "true_pan", "true_tilt", "open_x", "open_y"]
+PX_PER_DEG = 10.0
+
+
+def write_trace(folder, seed, open_x, servo_deg):
+    """A trace whose loop turned the servo by servo_deg [deg] per frame (pan only)."""
+    path = os.path.join(folder, f"trace_test_scene.jpg_predictive_first-frame_1.00_{seed}.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(COLUMNS)
+        for k, (o, deg) in enumerate(zip(open_x, servo_deg), start=1):
+            w.writerow([k, o + PX_PER_DEG * deg, 0, deg, 0, o, 0])
+
+
+def run(script, folder, *args):
+    return subprocess.run([sys.executable, script, folder, *args], capture_output=True, text=True)
+
+
+def median_figures(stdout):
+    """(oracle, loop) from the script's last line."""
+    last = stdout.strip().splitlines()[-1]
+    oracle = float(last.split("oracle ")[1].split(",")[0])
+    loop = float(last.split("loop ")[1])
+    return oracle, loop
+
+
+def main():
+    script = sys.argv[1]
+    failures = []
+    # A slow swing (period 200 frames, 50 px) that the loop followed one frame late.
+    swing = [50 * math.sin(2 * math.pi * k / 200) for k in range(1, 401)]
+    late = [-swing[k - 1] / PX_PER_DEG if k else 0.0 for k in range(len(swing))]
+    # Turns the servo by more than 2 deg, so the script can read the calibration.
+    with tempfile.TemporaryDirectory() as folder:
+        write_trace(folder, 1, swing, late)
+        # A fixed latency and a slow swing: the oracle cancels it after its first frames, far
+        # below the loop that lagged a frame.
+        r = run(script, folder, "--latency", "1", "1")
+        if r.returncode != 0:
+            failures.append(f"fixed latency run failed: {r.stderr}")
+        else:
+            oracle, loop = median_figures(r.stdout)
+            if not oracle < 0.2 * loop:
+                failures.append(f"oracle {oracle} px not well below the late loop's {loop} px")
+        # Jitter costs even the oracle: it cannot know which latency a command takes.
+        r_jitter = run(script, folder, "--latency", "1", "3")
+        if r_jitter.returncode == 0 and r.returncode == 0:
+            if not median_figures(r_jitter.stdout)[0] > median_figures(r.stdout)[0]:
+                failures.append("latency jitter did not raise the oracle's figure")
+        # Servos that turn slowly cannot follow the swing even knowing it.
+        r_slow = run(script, folder, "--latency", "1", "1", "--servo-rate-deg", "0.05")
+        if r_slow.returncode == 0 and r.returncode == 0:
+            if not median_figures(r_slow.stdout)[0] > 5 * median_figures(r.stdout)[0]:
+                failures.append("a slow servo did not raise the oracle's figure")
+    # No traces: a clear error naming the folder, and a non-zero exit.
+    with tempfile.TemporaryDirectory() as empty:
+        r = run(script, empty)
+        if r.returncode == 0 or empty not in r.stderr:
+            failures.append(f"an empty folder was not refused by name: {r.returncode} {r.stderr}")
+    for f in failures:
+        print("FAILED:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
