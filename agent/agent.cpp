@@ -265,9 +265,13 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
   predictive.lead_jitter_frames = std::max(0, max_delay_frames - pipeline.actuation_delay_frames);
   // One belief per flight: the pipeline tells it what was sent and which frame is processed,
   // the fixation controller resolves it (the command in effect when the latency jitters).
+  // The servos turn at their configured rate (ServoLimits::max_rate_deg_per_s: the rated
+  // speed or less), so a command is reached over the frames that takes.
   pipeline.servo_belief = std::make_shared<ServoBelief>(ServoBeliefOptions{
       pipeline.actuation_delay_frames, std::max(pipeline.actuation_delay_frames, max_delay_frames),
-      ServoTargets{config_.servo.pan.limits.park_deg, config_.servo.tilt.limits.park_deg}});
+      ServoTargets{config_.servo.pan.limits.park_deg, config_.servo.tilt.limits.park_deg},
+      ServoTargets{config_.servo.pan.limits.max_rate_deg_per_s / fps,
+                   config_.servo.tilt.limits.max_rate_deg_per_s / fps}});
 
   servos_ = std::make_unique<LimitedServoDriver>(std::move(backend), config_.servo.pan.limits,
                                                  config_.servo.tilt.limits, clock, 1.0 / fps);

@@ -70,6 +70,13 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
     if (error) *error = "servo initial angles must be finite";
     return false;
   }
+  if (!(max_step_deg.pan_deg > 0) || !(max_step_deg.tilt_deg > 0)) {
+    if (error) {
+      *error = "servo speed must be > 0 deg/frame, got " + std::to_string(max_step_deg.pan_deg) +
+               " (pan), " + std::to_string(max_step_deg.tilt_deg) + " (tilt)";
+    }
+    return false;
+  }
   return true;
 }
 
@@ -132,16 +139,25 @@ std::vector<Candidate> InEffectOrNewer(const std::vector<Candidate>& candidates,
 
 }  // namespace
 
+double ServoBelief::Reached(const std::deque<View>& views, double max_step_deg,
+                            double command_deg) const {
+  if (views.empty()) return command_deg;
+  const View& last = views.back();
+  const double step = max_step_deg * static_cast<double>(exposed_ - last.frame);
+  return last.deg + std::clamp(command_deg - last.deg, -step, step);
+}
+
 double ServoBelief::Expected(int axis) const {
   const Axis& a = axes_[static_cast<std::size_t>(axis)];
-  const std::vector<Candidate> candidates =
-      InEffectOrNewer(a.candidates, a.paths.front().in_effect);
+  const Path& best = a.paths.front();
+  const std::vector<Candidate> candidates = InEffectOrNewer(a.candidates, best.in_effect);
+  const double max_step = Of(options_.max_step_deg, axis);
   double sum = 0, weights = 0;
   for (const Candidate& c : candidates) {
-    sum += c.prior * c.deg;
+    sum += c.prior * Reached(best.views, max_step, c.deg);
     weights += c.prior;
   }
-  return weights > 0 ? sum / weights : candidates.front().deg;
+  return weights > 0 ? sum / weights : Reached(best.views, max_step, candidates.front().deg);
 }
 
 ServoTargets ServoBelief::Expose(std::int64_t frame) {
@@ -191,7 +207,8 @@ void ServoBelief::ScoreScales(Axis* a, double px_per_deg) {
   if (a->scale_miss_sq[best] < kScaleMargin * a->scale_miss_sq[a->scale]) a->scale = best;
 }
 
-void ServoBelief::ExtendPaths(Axis* a, double displacement_px, double px_per_deg) const {
+void ServoBelief::ExtendPaths(Axis* a, double max_step_deg, double displacement_px,
+                              double px_per_deg) const {
   // A path's cost grows by each frame's miss against its own extrapolation (Gaussian, with
   // the spread the best path has missed by lately) and by how unlikely the delay it chose
   // is; the kPaths cheapest survive.
@@ -209,11 +226,12 @@ void ServoBelief::ExtendPaths(Axis* a, double displacement_px, double px_per_deg
     const double predicted = path.views.empty() ? std::numeric_limits<double>::quiet_NaN()
                                                 : Predict(path.views, px_per_deg);
     for (const Candidate& c : allowed) {
-      Extended e{path, c.deg * px_per_deg + displacement_px - predicted, allowed.size() > 1};
+      const double deg = Reached(path.views, max_step_deg, c.deg);
+      Extended e{path, deg * px_per_deg + displacement_px - predicted, allowed.size() > 1};
       if (std::isfinite(e.miss)) e.path.cost += 0.5 * e.miss * e.miss / spread_sq;
       if (prior_sum > 0 && c.prior > 0) e.path.cost -= std::log(c.prior / prior_sum);
       e.path.in_effect = c.order;
-      e.path.views.push_back({exposed_, c.deg, displacement_px});
+      e.path.views.push_back({exposed_, deg, displacement_px});
       while (e.path.views.size() > kViews) e.path.views.pop_front();
       next.push_back(std::move(e));
     }
@@ -258,7 +276,7 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
   const std::size_t allowed = InEffectOrNewer(a.candidates, a.paths.front().in_effect).size();
   // Before the paths move on: the mean over the candidates the best path allows.
   const double expected = extrapolated || allowed == 1 ? 0.0 : Expected(axis);
-  ExtendPaths(&a, displacement_px, scales_[a.scale] / deg_per_px);
+  ExtendPaths(&a, Of(options_.max_step_deg, axis), displacement_px, scales_[a.scale] / deg_per_px);
   // Scored only where the latency jitters: with one candidate the scale changes nothing.
   if (allowed > 1) ScoreScales(&a, 1.0 / deg_per_px);
   return extrapolated || allowed == 1 ? a.paths.front().views.back().deg : expected;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,12 @@ struct ServoBeliefOptions {
   int min_delay_frames = 2;
   int max_delay_frames = 2;
   ServoTargets initial;  // [deg] what the servos show before the first command (park)
+  // [deg/frame] per axis, the servo's top speed (its rated deg/s × the frame period): the
+  // output moves at most this far a frame towards the command in effect, so a command the
+  // latency jitter lets overtake another is reached over several frames. +∞: every command
+  // is reached within the frame.
+  ServoTargets max_step_deg{std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity()};
 
   bool IsValid(std::string* error) const;
 };
@@ -57,6 +64,13 @@ std::vector<double> DelayShares(int spread);
 // (the loop acting on the wrong angles), with hypotheses 0.7, 0.5, 1.3. Without a
 // measurement (or a history to extrapolate) the belief is the candidates' mean, weighted by
 // how often each delay is the one in effect (DelayShares).
+//
+// A servo turns at a bounded speed (max_step_deg): while the latency jitters, the command in
+// effect may jump by two frames' worth of commands, more than the servo turns in a frame, and
+// the angle shown is then on the way to it, not at it. Each hypothesis therefore moves its
+// own last angle towards the candidate by at most the servo's step. Taken as at the command,
+// the lock-on's early frames (commands 3 deg/frame apart, servo 4 deg/frame) were believed up
+// to 2 deg off, and the swing model fitted to those views overshot the first turn by 15 px.
 //
 // The views are smooth only with the true deg per px: with a calibration F × off, u keeps
 // (1 − 1/F) of the servo's own motion, whose random early/late steps roughen the views until
@@ -131,7 +145,10 @@ class ServoBelief {
   // [px] the swing's view at the exposed frame, the views taken at px_per_deg.
   double Predict(const std::deque<View>& views, double px_per_deg) const;
   // Every path extended by each candidate it allows; the best few kept (Axis::paths).
-  void ExtendPaths(Axis* a, double displacement_px, double px_per_deg) const;
+  void ExtendPaths(Axis* a, double max_step_deg, double displacement_px, double px_per_deg) const;
+  // [deg] where the servo stands at the exposed frame with `command_deg` in effect, turning
+  // at most max_step_deg a frame from the newest of `views` (the command itself without one).
+  double Reached(const std::deque<View>& views, double max_step_deg, double command_deg) const;
   double ResolveAxis(int axis, double displacement_px, double deg_per_px);
   // Scores each scale on the newest view and picks the one to use.
   void ScoreScales(Axis* a, double px_per_deg);

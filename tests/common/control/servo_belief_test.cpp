@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -167,6 +169,45 @@ TEST(ServoBeliefTest, FindsACalibrationOffWithinTheFirstFramesOfTheLockOn) {
   }
   ASSERT_GE(found_at, 0) << "scale ends at " << belief.scale(0);
   EXPECT_LE(found_at, 10);
+}
+
+// A servo that turns at most 4 deg a frame, commands up to 3 deg a frame apart and a latency
+// of 1…2 frames (the lock-on of the realistic world): when a late command is overtaken the
+// one in effect jumps by up to 6 deg, and the servo shows an angle on the way to it. The
+// belief told the servo's speed follows it there; taken as at the command it is up to 2 deg
+// off on those frames.
+TEST(ServoBeliefTest, AServoThatTurnsSlowerThanTheCommandsJumpIsBelievedOnItsWay) {
+  SimulatedServoOptions slow = JitteryServo();
+  slow.rate_limit_deg_per_frame = 4;
+  const auto fly = [&slow](double max_step_deg) {
+    SimulatedServo servo(slow);
+    ServoBelief belief({.min_delay_frames = 2,
+                        .max_delay_frames = 3,
+                        .initial = {0, 0},
+                        .max_step_deg = {max_step_deg, max_step_deg}});
+    const auto swing = [](double t) {  // [px] up to 39 px/frame: commands rate-limited
+      return 250 * std::sin(2 * std::numbers::pi * t / 40);
+    };
+    double worst = 0;  // [deg] the belief's largest miss of the servo's angle
+    double command = 0;
+    for (int t = 0; t < 120; ++t) {
+      if (t > 0) servo.Step();
+      const double dx = -(swing(t) + servo.angle() / kLens.pan_deg_per_px);
+      belief.Expose(t);
+      const ServoTargets resolved = belief.Resolve(Measured(dx, 0), kLens);
+      if (t >= 3) worst = std::max(worst, std::abs(resolved.pan_deg - servo.angle()));
+      // Rate-limited like the agent's commands: 3 deg a frame.
+      const double wanted = -swing(t + 2.5) * kLens.pan_deg_per_px;
+      command += std::clamp(wanted - command, -3.0, 3.0);
+      servo.Command(command);
+      belief.Sent(t, {command, 0});
+    }
+    return worst;
+  };
+  const double told = fly(4);
+  const double untold = fly(std::numeric_limits<double>::infinity());
+  EXPECT_LT(told, 0.1) << "told the servo's speed: " << told << " deg";
+  EXPECT_GT(untold, 0.5) << "the set-up must make the servo lag its commands";
 }
 
 // Remembers the input of its last Update; holds the servos where they are.
