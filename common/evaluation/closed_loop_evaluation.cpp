@@ -249,9 +249,11 @@ class ClosedLoopRun {
     // frame's measurement when the latency jitters (ServoBelief).
     const SimulatedServoOptions& pan = platform_options_.pan;
     const SimulatedServoOptions& tilt = platform_options_.tilt;
-    belief_ = std::make_shared<ServoBelief>(ServoBeliefOptions{
-        1 + pan.latency_frames, 1 + std::max(pan.latency_frames, pan.latency_max_frames), initial_,
-        {pan.rate_limit_deg_per_frame, tilt.rate_limit_deg_per_frame}});
+    belief_ = std::make_shared<ServoBelief>(
+        ServoBeliefOptions{1 + pan.latency_frames,
+                           1 + std::max(pan.latency_frames, pan.latency_max_frames),
+                           initial_,
+                           {pan.rate_limit_deg_per_frame, tilt.rate_limit_deg_per_frame}});
     loop_ = std::make_unique<FixationLoop>(
         fixation, strategy,
         std::make_unique<ServoBeliefController>(std::move(controller), belief_, calibration_),
