@@ -70,8 +70,9 @@ void AddOptions(CLI::App& app, LoopCommandLine* c) {
                "its confidence, lock)");
   app.add_option("--start", c->start_mode,
                  "how fixation starts: first-frame (--mode fixate), ssp (after SSP's 300-frame "
-                 "free swing, on its slice) or both")
-      ->check(CLI::IsMember({"first-frame", "ssp", "both"}));
+                 "free swing, on its slice), both (those two: the issue's), or moving (a frame "
+                 "into the swing: the reference carries the swing's motion blur)")
+      ->check(CLI::IsMember({"first-frame", "ssp", "both", "moving"}));
   app.add_option("--jobs", c->jobs, "flights at a time (default: the machine's cores)")
       ->check(CLI::Range(1, 256));
   app.add_flag("--dry-run", c->dry_run,

@@ -56,8 +56,9 @@ ClosedLoopOptions LoopFlight::Options(const ClosedLoopOptions& agent_loop,
                                       const WorldOptions& world_options, int frames) const {
   ClosedLoopOptions o = agent_loop;
   o.frames = frames;
-  o.start =
-      start == "ssp" ? ClosedLoopOptions::Start::kAfterSsp : ClosedLoopOptions::Start::kFirstFrame;
+  o.start = start == "ssp"      ? ClosedLoopOptions::Start::kAfterSsp
+            : start == "moving" ? ClosedLoopOptions::Start::kMoving
+                                : ClosedLoopOptions::Start::kFirstFrame;
   o.world = world_options;
   o.controller = controller;
   if (controller != "predictive") {  // the default controller keeps the configured gains
@@ -88,7 +89,9 @@ bool LoopPlan::IsValid(std::string* error) const {
   if (!Known(controllers, "p")) return fail("controller p (the baseline) is missing");
   if (!agent_loop.IsValid(error)) return false;
   for (const std::string& start : starts) {
-    if (start != "first-frame" && start != "ssp") return fail("unknown start '" + start + "'");
+    if (start != "first-frame" && start != "ssp" && start != "moving") {
+      return fail("unknown start '" + start + "' (first-frame, ssp or moving)");
+    }
   }
   if (sweep_gains.empty() || sweep_scenes < 1 || sweep_scenes > static_cast<int>(scenes.size())) {
     return fail("the P-gain sweep needs gains and 1…" + std::to_string(scenes.size()) +

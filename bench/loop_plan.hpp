@@ -25,7 +25,7 @@ struct LoopFlight {
   std::string scene;       // an opencv-doc photo, e.g. "left01.jpg"
   std::size_t world = 0;   // index into LoopPlan::worlds
   std::string controller;  // "predictive", "pid" or "p"
-  std::string start;       // "first-frame" (--mode fixate) or "ssp" (after SSP's free swing)
+  std::string start;       // "first-frame" (--mode fixate), "ssp" (after SSP) or "moving"
   double gain = 1;         // P gain of "p" and "pid" (the predictive controller keeps its own)
   int seed = 1;
 
@@ -47,7 +47,7 @@ struct LoopPlan {
   std::vector<std::string> scenes;
   std::vector<LoopWorld> worlds;
   std::vector<std::string> controllers;  // "p" always among them: the baseline
-  std::vector<std::string> starts;       // "first-frame" and/or "ssp"
+  std::vector<std::string> starts;       // "first-frame", "ssp" and/or "moving"
   std::vector<double> sweep_gains;
   // The loop kapfix-agent --sim flies with its configuration (agent::MakeClosedLoopOptions):
   // servo speed, gains and their rate limit, search, frame period. Every flight starts from it.

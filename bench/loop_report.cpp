@@ -38,9 +38,10 @@ double Highest(const std::vector<double>& v) {
   return v.empty() ? kNan : *std::max_element(v.begin(), v.end());
 }
 
-// The table's row label: "nominal" from the first frame, "nominal/ssp" after SSP.
+// The table's row label: "nominal" from the first frame, "nominal/ssp" after SSP,
+// "nominal/moving" from a frame into the swing.
 std::string Label(const std::string& world, const std::string& start) {
-  return start == "ssp" ? world + "/ssp" : world;
+  return start == "first-frame" ? world : world + "/" + start;
 }
 
 // A list in the plan, or an empty one when `key` has none.
@@ -239,7 +240,11 @@ nlohmann::json LoopReport::Summary(const std::string& start_mode) const {
   for (const std::string& start : plan_.starts) by_start[start] = StartJson(start);
   // The keys, for the realistic world (the default controller); the online
   // calibration's ratio is the median over its flights of the final estimate ÷ the truth.
-  const std::string realistic_row = per_world.contains("realistic") ? "realistic" : "realistic/ssp";
+  // From the first frame where it was flown, else from the first start flown.
+  const bool first_frame =
+      std::find(plan_.starts.begin(), plan_.starts.end(), "first-frame") != plan_.starts.end();
+  const std::string realistic_row = Label(
+      "realistic", first_frame || plan_.starts.empty() ? "first-frame" : plan_.starts.front());
   const nlohmann::json realistic =
       per_world.contains(realistic_row) ? per_world[realistic_row] : nlohmann::json::object();
   return {

@@ -243,6 +243,8 @@ class ClosedLoopRun {
       // the swing may land on a weak part of the scene there: the agent warns the operator
       // (FixateMode), who takes another slice; here SSP's next slice whose patch passes.
       fixation.slice = ConfidentSlice(platform_.Capture(), ranking, fixation, *strategy);
+    } else if (options_.start == ClosedLoopOptions::Start::kMoving) {
+      platform_.Step();  // the servos hold; the swing (and its blur) is under way
     }
     // What the controller believes the servos show: built from the commands sent, never from
     // the servos' true output angles (those stay the simulation's), and resolved from each

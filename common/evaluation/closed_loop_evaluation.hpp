@@ -53,7 +53,11 @@ struct ClosedLoopOptions {
   // How fixation starts (issue 9: both count): from the first frame, as `--mode fixate`, or
   // after SSP: the servos hold through ssp_frames of free swing (FreeSwingSlice), the loop
   // fixates the slice SSP recommends, and the frame after the swing becomes the reference.
-  enum class Start { kFirstFrame, kAfterSsp };
+  // Moving: from the frame after the first, as an operator who fixates while the rig already
+  // swings. The simulated platform starts at frame 0, so nothing moved before it and the
+  // first frame carries no motion blur; the second carries the swing's (--blur), as a
+  // reference taken mid-swing does.
+  enum class Start { kFirstFrame, kAfterSsp, kMoving };
   Start start = Start::kFirstFrame;
   int ssp_frames = 300;          // [frames] the free swing (the agent's default SSP deadline)
   int frames = 600;              // frames processed after the reference frame

@@ -107,6 +107,16 @@ TEST(LoopPlanTest, IsValidRefusesAPlanWithoutPTheBaseline) {
   EXPECT_NE(error.find("baseline"), std::string::npos) << error;
 }
 
+TEST(LoopPlanTest, IsValidTakesTheMovingStartAndRefusesAnUnknownOneByName) {
+  LoopPlan plan = SmallPlan();
+  plan.starts = {"moving"};
+  std::string error;
+  EXPECT_TRUE(plan.IsValid(&error)) << error;
+  plan.starts = {"mid-air"};
+  EXPECT_FALSE(plan.IsValid(&error));
+  EXPECT_NE(error.find("'mid-air'"), std::string::npos) << error;
+}
+
 TEST(LoopPlanTest, IsValidRefusesMoreSweepScenesThanScenes) {
   LoopPlan plan = SmallPlan();
   plan.sweep_scenes = 4;
@@ -138,6 +148,12 @@ TEST(LoopFlightTest, OptionsCarryTheSeedStartWorldAndGain) {
   EXPECT_EQ(o.platform.kite.seed, 7U);
   EXPECT_EQ(o.platform.camera.seed, 7U);
   EXPECT_EQ(o.world.Describe(), WorldOptions::Nominal().Describe());
+}
+
+TEST(LoopFlightTest, AMovingStartFliesTheClosedLoopsMovingStart) {
+  const LoopFlight flight{"aero1.jpg", 0, "predictive", "moving", 1.0, 1};
+  EXPECT_EQ(flight.Options(AgentLoop(), WorldOptions::Nominal(), 50).start,
+            ClosedLoopOptions::Start::kMoving);
 }
 
 TEST(LoopFlightTest, ThePredictiveControllerKeepsTheAgentsGains) {

@@ -80,6 +80,21 @@ TEST(LoopReportTest, TargetsPerStartNameTheWorldWithTheMostSilentGross) {
   EXPECT_DOUBLE_EQ(ssp["realistic_worst_ratio_to_p_best"].get<double>(), 0.5);
 }
 
+// A plan of the moving start alone: its rows are labelled so, and the issue's keys come from
+// its realistic row (not left empty for want of a first-frame one).
+TEST(LoopReportTest, AMovingStartAloneHasItsOwnRowsAndGivesTheIssuesKeys) {
+  LoopPlan plan = TwoScenePlan();
+  plan.starts = {"moving"};
+  std::vector<LoopRun> runs = MadeUpRuns(plan);
+  for (LoopRun& run : runs) run.figures.gross_pct = run.world == "realistic" ? 7.0 : 1.0;
+  const nlohmann::json summary = LoopReport(plan, kBestGain, runs).Summary("moving");
+  EXPECT_TRUE(summary["worlds"].contains("realistic/moving"));
+  EXPECT_TRUE(summary["worlds"].contains("nominal/moving"));
+  EXPECT_EQ(summary["worlds"].size(), 2U);
+  ASSERT_TRUE(summary["gross_pct"].is_number()) << summary["gross_pct"];
+  EXPECT_DOUBLE_EQ(summary["gross_pct"].get<double>(), 7.0);
+}
+
 TEST(LoopReportTest, CsvHasALinePerFlightInTheRunsOrder) {
   const LoopPlan plan = TwoScenePlan();
   const std::vector<LoopRun> runs = MadeUpRuns(plan);

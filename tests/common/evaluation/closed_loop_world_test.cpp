@@ -330,6 +330,24 @@ TEST(ClosedLoopWorldTest, UnderRollAnOffCentreSliceIsMeasuredWhereTheLoopFixates
       << " px";
 }
 
+// A moving start fixates one frame into the swing (its reference carries the swing's blur):
+// the view it holds is frame 1's, and its flight the first-frame start's, one frame on.
+TEST(ClosedLoopStartTest, AMovingStartTakesItsReferenceOneFrameIntoTheSwing) {
+  ClosedLoopOptions options;
+  options.frames = 20;
+  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
+  const ClosedLoopFigures first = EvaluateClosedLoop(scene, options);
+  options.start = ClosedLoopOptions::Start::kMoving;
+  const ClosedLoopFigures moving = EvaluateClosedLoop(scene, options);
+  ASSERT_EQ(moving.open_offsets.size(), first.open_offsets.size());
+  // The swing moved between frames 1 and 2: the shift is seen.
+  ASSERT_GT(cv::norm(first.open_offsets[1] - first.open_offsets[0]), 1.0);
+  for (std::size_t k = 0; k + 1 < first.open_offsets.size(); ++k) {
+    EXPECT_NEAR(moving.open_offsets[k].x, first.open_offsets[k + 1].x, 1e-9) << k;
+    EXPECT_NEAR(moving.open_offsets[k].y, first.open_offsets[k + 1].y, 1e-9) << k;
+  }
+}
+
 TEST(ClosedLoopStartTest, RefusesAFreeSwingOfFewerThanTwoFrames) {
   ClosedLoopOptions options;
   options.start = ClosedLoopOptions::Start::kAfterSsp;
