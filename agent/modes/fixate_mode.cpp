@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "agent/modes/run_options.hpp"
@@ -13,6 +14,10 @@ namespace {
 
 // [frames] the least spacing of the log's off-target lines (5 s at 30 fps).
 constexpr std::uint64_t kOffTargetLogFrames = 150;
+// [px/frame] a view moving at least this fast smears the reference's patch over a few px
+// within an exposure of a fraction of the frame period. Jitter stays below it (σ = 2 px
+// moves σ = 2.8 px a frame, under 8 px in 99.6 % of frames: SwingPredictorOptions).
+constexpr double kSmearingSpeedPx = 8.0;
 
 }  // namespace
 
@@ -25,6 +30,21 @@ void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) 
   if (kind_ != AgentMode::kFixate) return;
   context_.events().OnReferenceTaken(reference_frame_, current);
   WarnOfAWeakPatch(frame.index);
+}
+
+void FixateMode::SeeBefore(const CapturedFrame& frame) {
+  // A reference taken while the view moves fast carries the motion's blur, and on a façade or
+  // a repetitive scene the sharp frames of a held view may then never match it clearly:
+  // realistic world, a reference taken a frame into the swing (kapfix-bench-loop --start
+  // moving) lost leuvenA.jpg on 9 seeds of 10, where the first frame (no blur) held it.
+  if (kind_ != AgentMode::kFixate) return;
+  const std::optional<cv::Point2d> moved = loop_->Locate(frame.image);
+  if (!moved || std::hypot(moved->x, moved->y) < kSmearingSpeedPx) return;
+  spdlog::warn(
+      "frame {}: the view moved {:.0f} px in the frame before the reference, so the reference "
+      "may be smeared by motion blur; if the lock does not come, fixate again while the view "
+      "is slow (at the turn of the swing)",
+      reference_index_, std::hypot(moved->x, moved->y));
 }
 
 void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {

@@ -22,6 +22,8 @@ class FixateMode : public Mode {
   AgentMode kind() const override { return kind_; }
   // The reference is `frame` (ModeEvents::OnReferenceTaken tells).
   void Enter(const CapturedFrame& frame, const ServoTargets& current) override;
+  // Warns when the view moved fast into the reference: its patch is then smeared.
+  void SeeBefore(const CapturedFrame& frame) override;
   // Instead of Enter: the reference is a view held earlier, not the frame in front of the
   // camera (no OnReferenceTaken: the view is not new). Throws like Enter.
   void TakeUp(const HeldView& view);

@@ -46,6 +46,10 @@ class Mode {
   // std::runtime_error (or std::invalid_argument) when it cannot start on it: the runner then
   // holds the servos idle and says why.
   virtual void Enter(const CapturedFrame& frame, const ServoTargets& current) = 0;
+  // Right after Enter, when the camera ran before: the frame it showed just before the one
+  // the mode entered on. A fixation judges from it how fast the view moved as its reference
+  // was taken; the other modes have no use for it.
+  virtual void SeeBefore(const CapturedFrame& /*frame*/) {}
   virtual FrameOutcome Process(const CapturedFrame& frame, const ServoTargets& current,
                                double dt_s) = 0;
   // The settings or the slice changed (ModeContext); `rebuild`: more than the controller's

@@ -147,6 +147,7 @@ void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const Capt
   current_.reset();  // what the previous mode held goes before the next one starts
   resuming_ = false;
   next->Enter(frame, current);
+  if (previous_ && previous_->index + 1 == frame.index) next->SeeBefore(*previous_);
   current_ = std::move(next);
   spdlog::info("mode {}{}", ToString(mode),
                mode == AgentMode::kFixate || mode == AgentMode::kFollow
@@ -191,6 +192,7 @@ FrameOutcome ModeRunner::Process(const CapturedFrame& frame, const ServoTargets&
   context_.worker().Deliver();  // what the worker finished, as events of this thread
   ApplyPending(frame, current);
   FrameOutcome outcome = current_->Process(frame, current, dt_s);
+  previous_ = frame;
   if (std::optional<ModeEnd> end = current_->TakeEnd()) {
     return SwitchAfter(std::move(*end), outcome, frame, current, dt_s);
   }

@@ -85,7 +85,10 @@ class ModeRunner : public FrameProcessor {
   Pending pending_;
 
   std::unique_ptr<Mode> current_;  // control thread only
-  bool resuming_ = false;          // current_ is a ResumeMode
+  // The frame processed last (control thread only): the frame before the one a mode enters
+  // on (Mode::SeeBefore). Its image is shared, not copied: a frame owns its image.
+  std::optional<CapturedFrame> previous_;
+  bool resuming_ = false;  // current_ is a ResumeMode
 };
 
 }  // namespace kapfix::agent

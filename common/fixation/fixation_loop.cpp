@@ -238,6 +238,15 @@ cv::Point2d FixationLoop::FollowStep(const cv::Mat& plane, const cv::Point2d& fr
   return follow_sum_;
 }
 
+std::optional<cv::Point2d> FixationLoop::Locate(const cv::Mat& frame_bgr) const {
+  if (!reference_) return std::nullopt;
+  cv::Mat plane = Plane(frame_bgr);
+  exposure_.ApplyInPlace(&plane);
+  const SearchResult match = strategy_->Search(*reference_, plane, options_.search);
+  if (!match.found || match.confidence < options_.lock_regain_confidence) return std::nullopt;
+  return OnSearchedAxes(match.displacement);
+}
+
 FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTargets& current,
                                          double dt_s) {
   const auto start = std::chrono::steady_clock::now();

@@ -125,6 +125,12 @@ class FixationLoop {
   // Throws std::invalid_argument when the patch does not fit.
   void SetReference(const cv::Mat& frame_bgr,
                     std::optional<ServoTargets> seen_through = std::nullopt);
+  // [px] Where the reference's patch lies in `frame_bgr` (stored-reference convention, on the
+  // searched axes), when the search finds it clearly (lock_regain_confidence); none without a
+  // reference or a clear match. The lock and the controller are left alone: for a frame
+  // outside the flight, such as the one before the reference (how fast the view was moving
+  // when it was taken).
+  std::optional<cv::Point2d> Locate(const cv::Mat& frame_bgr) const;
   bool has_reference() const { return reference_.has_value(); }
   // Centres the next search on `shift` [px] instead of search.origin: the reference's view was
   // found there by a wider search (an agent resuming after a restart, issue 14). With

@@ -149,6 +149,38 @@ TEST(ModeRunnerTest, FixatingAPatchTheSearchBarelyFindsInItsOwnFrameIsWarnedOf) 
   EXPECT_NE(log.find("select it (select_slice)"), std::string::npos) << log;
 }
 
+// What the agent logs when the operator fixates on frame 8 of a running camera whose frame
+// `before` (index) showed the view at window position `before_x` [px] and frame 8 at 40.
+std::string LoggedFixatingAfter(std::uint64_t before, int before_x) {
+  const std::vector<CapturedFrame> frames = FramesAt({before_x, 40});
+  RecordingModeEvents events;
+  return LoggedDuring([&] {
+    ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle), events);
+    Feed(runner, CapturedFrame{frames[0].image, 0, before});
+    runner.RequestMode(AgentMode::kFixate);
+    Feed(runner, CapturedFrame{frames[1].image, 0, 8});
+  });
+}
+
+constexpr const char* kSmearedLine = "px in the frame before the reference";
+
+TEST(ModeRunnerTest, AReferenceTakenWhileTheViewMovesFastIsWarnedOfAsSmeared) {
+  const std::string log = LoggedFixatingAfter(7, 28);  // 12 px in a frame
+  EXPECT_NE(log.find("the view moved 12 px in the frame before the reference"), std::string::npos)
+      << log;
+}
+
+TEST(ModeRunnerTest, AReferenceTakenWhileTheViewIsSlowIsNotWarnedOf) {
+  const std::string log = LoggedFixatingAfter(7, 37);  // 3 px in a frame
+  EXPECT_EQ(log.find(kSmearedLine), std::string::npos) << log;
+}
+
+// A frame that is not the one just before (frames lost between) says nothing of the speed.
+TEST(ModeRunnerTest, AnEarlierFrameIsNotTakenForTheOneBeforeTheReference) {
+  const std::string log = LoggedFixatingAfter(5, 28);
+  EXPECT_EQ(log.find(kSmearedLine), std::string::npos) << log;
+}
+
 TEST(ModeRunnerTest, FixatingATexturedPatchWarnsOfNothing) {
   RecordingModeEvents events;
   const std::string log = LoggedDuring([&] {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "common/control/calibration.hpp"
@@ -203,6 +204,32 @@ TEST(FixationLoopTest, TheSwingsCentreUsesTheControllersTrustedEstimate) {
 }
 
 // Re-acquired, the measurement steers again: the return ends with the loss.
+// A frame outside the flight (the one before the reference) is located against the
+// reference, and neither the lock nor the controller hears of it.
+TEST(FixationLoopTest, LocatesTheReferenceInAFrameWithoutSteering) {
+  const cv::Mat scene = testing::LoadOpenCvPhoto("aero1.jpg");
+  const cv::Rect window((scene.cols - 300) / 2, (scene.rows - 300) / 2, 300, 300);
+  FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
+  loop.SetReference(scene(window).clone());
+  // The view moved by (+9, −3) px from that frame to the reference: there the reference's
+  // patch lies (−9, +3) px off (stored-reference convention).
+  const std::optional<cv::Point2d> at = loop.Locate(scene(window + cv::Point(9, -3)).clone());
+  ASSERT_TRUE(at.has_value());
+  EXPECT_NEAR(at->x, -9, 0.3);
+  EXPECT_NEAR(at->y, 3, 0.3);
+  // The next frame is the flight's first: P corrects only its own displacement.
+  const FixationLoop::Step step =
+      loop.Process(testing::Translated(scene(window).clone(), 4, 0), {0, 0}, 0.04);
+  EXPECT_NEAR(step.targets.pan_deg, 0.4, 0.03);
+}
+
+TEST(FixationLoopTest, AFrameThatDoesNotShowTheReferenceIsNotLocated) {
+  FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
+  EXPECT_FALSE(loop.Locate(Texture()).has_value()) << "no reference yet";
+  loop.SetReference(Texture());
+  EXPECT_FALSE(loop.Locate(testing::SmoothTexture({300, 300}, 99, 3.0)).has_value());
+}
+
 TEST(FixationLoopTest, AReacquiredLockSteersByTheMatchNotBackToTheReferenceAngles) {
   FixationOptions o = Options();
   o.lock_lost_frames = 1;
