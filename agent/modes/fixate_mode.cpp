@@ -39,12 +39,13 @@ void FixateMode::SeeBefore(const CapturedFrame& frame) {
   // moving) lost leuvenA.jpg on 9 seeds of 10, where the first frame (no blur) held it.
   if (kind_ != AgentMode::kFixate) return;
   const std::optional<cv::Point2d> moved = loop_->Locate(frame.image);
-  if (!moved || std::hypot(moved->x, moved->y) < kSmearingSpeedPx) return;
+  const double speed_px = moved ? std::hypot(moved->x, moved->y) : 0.0;
+  if (speed_px < kSmearingSpeedPx) return;
   spdlog::warn(
       "frame {}: the view moved {:.0f} px in the frame before the reference, so the reference "
       "may be smeared by motion blur; if the lock does not come, fixate again while the view "
       "is slow (at the turn of the swing)",
-      reference_index_, std::hypot(moved->x, moved->y));
+      reference_index_, speed_px);
 }
 
 void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {

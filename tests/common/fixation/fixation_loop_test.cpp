@@ -203,7 +203,6 @@ TEST(FixationLoopTest, TheSwingsCentreUsesTheControllersTrustedEstimate) {
   EXPECT_NEAR(centre->tilt_deg, 1.0 + 5 * 0.1, 0.03);
 }
 
-// Re-acquired, the measurement steers again: the return ends with the loss.
 // A frame outside the flight (the one before the reference) is located against the
 // reference, and neither the lock nor the controller hears of it.
 TEST(FixationLoopTest, LocatesTheReferenceInAFrameWithoutSteering) {
@@ -230,6 +229,7 @@ TEST(FixationLoopTest, AFrameThatDoesNotShowTheReferenceIsNotLocated) {
   EXPECT_FALSE(loop.Locate(testing::SmoothTexture({300, 300}, 99, 3.0)).has_value());
 }
 
+// Re-acquired, the measurement steers again: the return ends with the loss.
 TEST(FixationLoopTest, AReacquiredLockSteersByTheMatchNotBackToTheReferenceAngles) {
   FixationOptions o = Options();
   o.lock_lost_frames = 1;
