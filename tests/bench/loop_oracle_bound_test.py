@@ -29,11 +29,11 @@ def run(script, folder, *args):
 
 
 def median_figures(stdout):
-    """(oracle, loop) from the script's last line."""
+    """(bound, loop) from the script's last line: "median over N flights [px]: B x, loop y"."""
     last = stdout.strip().splitlines()[-1]
-    oracle = float(last.split("oracle ")[1].split(",")[0])
+    bound = float(last.split(": ")[1].split(",")[0].split()[1])
     loop = float(last.split("loop ")[1])
-    return oracle, loop
+    return bound, loop
 
 
 def main():
@@ -64,6 +64,35 @@ def main():
         if r_slow.returncode == 0 and r.returncode == 0:
             if not median_figures(r_slow.stdout)[0] > 5 * median_figures(r.stdout)[0]:
                 failures.append("a slow servo did not raise the oracle's figure")
+    # The causal bound knows only the swing's past: under latency jitter it stays above the
+    # oracle, yet at a fixed latency a swing its linear forecast can follow (a sinusoid is
+    # exactly AR(2)) costs it far less than the loop that lagged a frame.
+    with tempfile.TemporaryDirectory() as folder:
+        write_trace(folder, 1, swing, late)
+        oracle = run(script, folder, "--latency", "1", "2")
+        causal = run(script, folder, "--latency", "1", "2", "--bound", "causal")
+        if oracle.returncode != 0 or causal.returncode != 0:
+            failures.append(f"causal run failed: {causal.stderr}")
+        else:
+            bound = median_figures(causal.stdout)[0]
+            if not bound > median_figures(oracle.stdout)[0]:
+                failures.append(f"the causal bound {bound} px is not above the oracle's")
+        fixed = run(script, folder, "--latency", "1", "1", "--bound", "causal")
+        if fixed.returncode != 0:
+            failures.append(f"causal run at a fixed latency failed: {fixed.stderr}")
+        else:
+            bound, loop = median_figures(fixed.stdout)
+            if not bound < 0.3 * loop:
+                failures.append(f"the causal bound {bound} px is not well below the late loop's")
+            # Seen through measurement noise, the same past forecasts worse.
+            noisy = run(script, folder, "--latency", "1", "1", "--bound", "causal",
+                        "--noise-px", "2", "2")
+            if noisy.returncode != 0 or not median_figures(noisy.stdout)[0] > bound:
+                failures.append(f"measurement noise did not raise the causal bound: {noisy.stderr}")
+        # After SSP the swing before the reference was not still: refused, saying why.
+        r = run(script, folder, "--bound", "causal", "--start", "ssp")
+        if r.returncode == 0 or "SSP" not in r.stderr:
+            failures.append(f"a causal bound after SSP was not refused: {r.stderr}")
     # No traces: a clear error naming the folder, and a non-zero exit.
     with tempfile.TemporaryDirectory() as empty:
         r = run(script, empty)
