@@ -102,6 +102,21 @@ std::size_t ConnectionBudget() {
       (open_files - std::min(open_files, kReservedFiles)) / 2 / kFilesPerConnection, 16, 4096));
 }
 
+// One belief per flight: the pipeline tells it what was sent and which frame is processed,
+// the fixation controller resolves it (the command in effect when the latency jitters). The
+// servos turn at their configured rate (ServoLimits::max_rate_deg_per_s: the rated speed or
+// less), so a command is reached over the frames that takes.
+std::shared_ptr<ServoBelief> MakeServoBelief(const ServoConfig& servo, double fps,
+                                             int delay_frames, int max_delay_frames,
+                                             ServoTargets play_deg) {
+  return std::make_shared<ServoBelief>(ServoBeliefOptions{
+      delay_frames, std::max(delay_frames, max_delay_frames),
+      ServoTargets{servo.pan.limits.park_deg, servo.tilt.limits.park_deg},
+      ServoTargets{servo.pan.limits.max_rate_deg_per_s / fps,
+                   servo.tilt.limits.max_rate_deg_per_s / fps},
+      play_deg});
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> MakeCamera(const CameraConfig& camera) {
@@ -229,6 +244,9 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
   MonotonicClockUs clock = SteadyClockNowUs;
   std::unique_ptr<ServoDriver> backend;
   int max_delay_frames = 0;  // [frames] the longest actuation delay (latency jitter); 0: fixed
+  // [deg] the servos' play, known for the simulated ones as their latency is; on hardware
+  // none is assumed (not yet configurable or estimated: left for later).
+  ServoTargets servo_play{0, 0};
 
   if (simulated_) {
     const std::string& scene_path = config_.simulation.scene;
@@ -255,6 +273,7 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
     pipeline.actuation_delay_frames = 1 + platform_options.pan.latency_frames;
     max_delay_frames =
         1 + std::max(platform_options.pan.latency_frames, platform_options.pan.latency_max_frames);
+    servo_play = {platform_options.pan.backlash_deg, platform_options.tilt.backlash_deg};
   } else {
     source_ = MakeCamera(config_.camera);
     backend = MakeServoBackend(config_.servo);
@@ -263,15 +282,8 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
   predictive.predictor.lead_frames = pipeline.actuation_delay_frames;
   // With a jittering latency, aimed at every delay it may take (as the evaluation does).
   predictive.lead_jitter_frames = std::max(0, max_delay_frames - pipeline.actuation_delay_frames);
-  // One belief per flight: the pipeline tells it what was sent and which frame is processed,
-  // the fixation controller resolves it (the command in effect when the latency jitters).
-  // The servos turn at their configured rate (ServoLimits::max_rate_deg_per_s: the rated
-  // speed or less), so a command is reached over the frames that takes.
-  pipeline.servo_belief = std::make_shared<ServoBelief>(ServoBeliefOptions{
-      pipeline.actuation_delay_frames, std::max(pipeline.actuation_delay_frames, max_delay_frames),
-      ServoTargets{config_.servo.pan.limits.park_deg, config_.servo.tilt.limits.park_deg},
-      ServoTargets{config_.servo.pan.limits.max_rate_deg_per_s / fps,
-                   config_.servo.tilt.limits.max_rate_deg_per_s / fps}});
+  pipeline.servo_belief = MakeServoBelief(config_.servo, fps, pipeline.actuation_delay_frames,
+                                          max_delay_frames, servo_play);
 
   servos_ = std::make_unique<LimitedServoDriver>(std::move(backend), config_.servo.pan.limits,
                                                  config_.servo.tilt.limits, clock, 1.0 / fps);

@@ -10,6 +10,7 @@ namespace kapfix {
 namespace {
 
 constexpr int kMaxDelayFrames = 1000;
+constexpr double kMaxPlayDeg = 10;  // [deg] a servo with more play than this is broken (message)
 // [frames] a view older than this no longer says where the swing is now: the extrapolation
 // restarts from the next measured frame.
 constexpr std::int64_t kMaxViewGapFrames = 3;
@@ -77,6 +78,15 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
     }
     return false;
   }
+  if (!(play_deg.pan_deg >= 0 && play_deg.pan_deg <= kMaxPlayDeg) ||
+      !(play_deg.tilt_deg >= 0 && play_deg.tilt_deg <= kMaxPlayDeg)) {
+    if (error) {
+      *error = "servo play must be 0…10 deg, got " +
+               std::to_string(play_deg.pan_deg) + " (pan), " + std::to_string(play_deg.tilt_deg) +
+               " (tilt)";
+    }
+    return false;
+  }
   return true;
 }
 
@@ -139,12 +149,16 @@ std::vector<Candidate> InEffectOrNewer(const std::vector<Candidate>& candidates,
 
 }  // namespace
 
-double ServoBelief::Reached(const std::deque<View>& views, double max_step_deg,
-                            double command_deg) const {
-  if (views.empty()) return command_deg;
+ServoBelief::Pose ServoBelief::Reached(const std::deque<View>& views, double max_step_deg,
+                                      double play_deg, double command_deg) const {
+  if (views.empty()) return {command_deg, command_deg};
   const View& last = views.back();
   const double step = max_step_deg * static_cast<double>(exposed_ - last.frame);
-  return last.deg + std::clamp(command_deg - last.deg, -step, step);
+  const double shaft = last.shaft_deg + std::clamp(command_deg - last.shaft_deg, -step, step);
+  // The play: the output moves only when the shaft pushes against one side of the gap. Taken
+  // as the shaft, the belief was half the play off on almost every frame (0.5 px at the
+  // simulated servo's 0.1° and 10 px/deg), the largest noise in the pan views it rebuilt.
+  return {std::clamp(last.deg, shaft - play_deg / 2, shaft + play_deg / 2), shaft};
 }
 
 double ServoBelief::Expected(int axis) const {
@@ -152,12 +166,14 @@ double ServoBelief::Expected(int axis) const {
   const Path& best = a.paths.front();
   const std::vector<Candidate> candidates = InEffectOrNewer(a.candidates, best.in_effect);
   const double max_step = Of(options_.max_step_deg, axis);
+  const double play = Of(options_.play_deg, axis);
   double sum = 0, weights = 0;
   for (const Candidate& c : candidates) {
-    sum += c.prior * Reached(best.views, max_step, c.deg);
+    sum += c.prior * Reached(best.views, max_step, play, c.deg).output_deg;
     weights += c.prior;
   }
-  return weights > 0 ? sum / weights : Reached(best.views, max_step, candidates.front().deg);
+  return weights > 0 ? sum / weights
+                     : Reached(best.views, max_step, play, candidates.front().deg).output_deg;
 }
 
 ServoTargets ServoBelief::Expose(std::int64_t frame) {
@@ -207,8 +223,10 @@ void ServoBelief::ScoreScales(Axis* a, double px_per_deg) {
   if (a->scale_miss_sq[best] < kScaleMargin * a->scale_miss_sq[a->scale]) a->scale = best;
 }
 
-void ServoBelief::ExtendPaths(Axis* a, double max_step_deg, double displacement_px,
+void ServoBelief::ExtendPaths(Axis* a, int axis, double displacement_px,
                               double px_per_deg) const {
+  const double max_step = Of(options_.max_step_deg, axis);
+  const double play = Of(options_.play_deg, axis);
   // A path's cost grows by each frame's miss against its own extrapolation (Gaussian, with
   // the spread the best path has missed by lately) and by how unlikely the delay it chose
   // is; the kPaths cheapest survive.
@@ -226,12 +244,13 @@ void ServoBelief::ExtendPaths(Axis* a, double max_step_deg, double displacement_
     const double predicted = path.views.empty() ? std::numeric_limits<double>::quiet_NaN()
                                                 : Predict(path.views, px_per_deg);
     for (const Candidate& c : allowed) {
-      const double deg = Reached(path.views, max_step_deg, c.deg);
+      const Pose pose = Reached(path.views, max_step, play, c.deg);
+      const double deg = pose.output_deg;
       Extended e{path, deg * px_per_deg + displacement_px - predicted, allowed.size() > 1};
       if (std::isfinite(e.miss)) e.path.cost += 0.5 * e.miss * e.miss / spread_sq;
       if (prior_sum > 0 && c.prior > 0) e.path.cost -= std::log(c.prior / prior_sum);
       e.path.in_effect = c.order;
-      e.path.views.push_back({exposed_, deg, displacement_px});
+      e.path.views.push_back({exposed_, deg, displacement_px, pose.shaft_deg});
       while (e.path.views.size() > kViews) e.path.views.pop_front();
       next.push_back(std::move(e));
     }
@@ -243,7 +262,10 @@ void ServoBelief::ExtendPaths(Axis* a, double max_step_deg, double displacement_
   const auto same = [](const Path& l, const Path& r) {
     if (l.in_effect != r.in_effect || l.views.size() != r.views.size()) return false;
     for (std::size_t k = 0; k < l.views.size(); ++k) {
-      if (l.views[k].deg != r.views[k].deg || l.views[k].frame != r.views[k].frame) return false;
+      if (l.views[k].deg != r.views[k].deg || l.views[k].frame != r.views[k].frame ||
+          l.views[k].shaft_deg != r.views[k].shaft_deg) {
+        return false;
+      }
     }
     return true;
   };
@@ -276,7 +298,7 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
   const std::size_t allowed = InEffectOrNewer(a.candidates, a.paths.front().in_effect).size();
   // Before the paths move on: the mean over the candidates the best path allows.
   const double expected = extrapolated || allowed == 1 ? 0.0 : Expected(axis);
-  ExtendPaths(&a, Of(options_.max_step_deg, axis), displacement_px, scales_[a.scale] / deg_per_px);
+  ExtendPaths(&a, axis, displacement_px, scales_[a.scale] / deg_per_px);
   // Scored only where the latency jitters: with one candidate the scale changes nothing.
   if (allowed > 1) ScoreScales(&a, 1.0 / deg_per_px);
   return extrapolated || allowed == 1 ? a.paths.front().views.back().deg : expected;

@@ -24,6 +24,10 @@ struct ServoBeliefOptions {
   // is reached within the frame.
   ServoTargets max_step_deg{std::numeric_limits<double>::infinity(),
                             std::numeric_limits<double>::infinity()};
+  // [deg] per axis, the servo's play (backlash) between its shaft and its output: the output
+  // stays put while the shaft turns inside the play and is dragged along once it is taken
+  // up, so after a move it trails the shaft by half the play. 0: none.
+  ServoTargets play_deg{0, 0};
 
   bool IsValid(std::string* error) const;
 };
@@ -121,8 +125,14 @@ class ServoBelief {
   // the loop) depends on the scale it is reconstructed with.
   struct View {
     std::int64_t frame;
-    double deg;              // [deg] the resolved angle
+    double deg;              // [deg] the resolved angle (the output's)
     double displacement_px;  // [px]
+    double shaft_deg;        // [deg] the servo's shaft behind that output (see play_deg)
+  };
+  // Where a servo stands: its output and the shaft that drags it.
+  struct Pose {
+    double output_deg;
+    double shaft_deg;
   };
   // One hypothesis of which command was in effect at each recent frame.
   struct Path {
@@ -145,10 +155,12 @@ class ServoBelief {
   // [px] the swing's view at the exposed frame, the views taken at px_per_deg.
   double Predict(const std::deque<View>& views, double px_per_deg) const;
   // Every path extended by each candidate it allows; the best few kept (Axis::paths).
-  void ExtendPaths(Axis* a, double max_step_deg, double displacement_px, double px_per_deg) const;
-  // [deg] where the servo stands at the exposed frame with `command_deg` in effect, turning
-  // at most max_step_deg a frame from the newest of `views` (the command itself without one).
-  double Reached(const std::deque<View>& views, double max_step_deg, double command_deg) const;
+  void ExtendPaths(Axis* a, int axis, double displacement_px, double px_per_deg) const;
+  // Where the servo stands at the exposed frame with `command_deg` in effect: its shaft turns
+  // at most max_step_deg a frame from the newest of `views` and drags the output through the
+  // play (the command itself, shaft and output, without a view).
+  Pose Reached(const std::deque<View>& views, double max_step_deg, double play_deg,
+               double command_deg) const;
   double ResolveAxis(int axis, double displacement_px, double deg_per_px);
   // Scores each scale on the newest view and picks the one to use.
   void ScoreScales(Axis* a, double px_per_deg);

@@ -248,14 +248,16 @@ class ClosedLoopRun {
     }
     // What the controller believes the servos show: built from the commands sent, never from
     // the servos' true output angles (those stay the simulation's), and resolved from each
-    // frame's measurement when the latency jitters (ServoBelief).
+    // frame's measurement when the latency jitters (ServoBelief). It knows the servos' specs
+    // (latency, speed, play), as the agent does for its simulated servos.
     const SimulatedServoOptions& pan = platform_options_.pan;
     const SimulatedServoOptions& tilt = platform_options_.tilt;
     belief_ = std::make_shared<ServoBelief>(
         ServoBeliefOptions{1 + pan.latency_frames,
                            1 + std::max(pan.latency_frames, pan.latency_max_frames),
                            initial_,
-                           {pan.rate_limit_deg_per_frame, tilt.rate_limit_deg_per_frame}});
+                           {pan.rate_limit_deg_per_frame, tilt.rate_limit_deg_per_frame},
+                           {pan.backlash_deg, tilt.backlash_deg}});
     loop_ = std::make_unique<FixationLoop>(
         fixation, strategy,
         std::make_unique<ServoBeliefController>(std::move(controller), belief_, calibration_),

@@ -210,6 +210,59 @@ TEST(ServoBeliefTest, AServoThatTurnsSlowerThanTheCommandsJumpIsBelievedOnItsWay
   EXPECT_GT(untold, 0.5) << "the set-up must make the servo lag its commands";
 }
 
+// A servo with play, driven through a swing's reversals: the output trails the shaft by
+// half the play, so a belief that takes the output for the shaft is that far off on almost
+// every frame, and one told the play follows the output.
+TEST(ServoBeliefTest, AServoWithPlayIsBelievedAtItsOutputBehindTheShaft) {
+  SimulatedServoOptions geared = JitteryServo();
+  geared.rate_limit_deg_per_frame = 4;
+  geared.backlash_deg = 0.4;
+  const auto fly = [&geared](double play_deg) {
+    SimulatedServo servo(geared);
+    ServoBelief belief({.min_delay_frames = 2,
+                        .max_delay_frames = 3,
+                        .initial = {0, 0},
+                        .max_step_deg = {4, 4},
+                        .play_deg = {play_deg, play_deg}});
+    const auto swing = [](double t) { return 80 * std::sin(2 * std::numbers::pi * t / 40); };
+    double miss_sq = 0;  // [deg²] the belief's miss of the servo's output, after the lock-on
+    int counted = 0;
+    for (int t = 0; t < 160; ++t) {
+      if (t > 0) servo.Step();
+      const double dx = -(swing(t) + servo.angle() / kLens.pan_deg_per_px);
+      belief.Expose(t);
+      const ServoTargets resolved = belief.Resolve(Measured(dx, 0), kLens);
+      if (t >= 20) {
+        miss_sq += (resolved.pan_deg - servo.angle()) * (resolved.pan_deg - servo.angle());
+        ++counted;
+      }
+      const double command = -swing(t + 2.5) * kLens.pan_deg_per_px;
+      servo.Command(command);
+      belief.Sent(t, {command, 0});
+    }
+    return std::sqrt(miss_sq / counted);
+  };
+  const double told = fly(0.4);
+  const double untold = fly(0);
+  EXPECT_LT(told, 0.05) << "told the servo's play: " << told << " deg RMS";
+  EXPECT_GT(untold, 0.15) << "not told, half the 0.4 deg play: " << untold << " deg RMS";
+}
+
+TEST(ServoBeliefTest, RefusesAPlayThatIsNegativeOrBeyondABrokenServos) {
+  EXPECT_THROW(ServoBelief({.min_delay_frames = 2,
+                            .max_delay_frames = 2,
+                            .initial = {},
+                            .max_step_deg = {4, 4},
+                            .play_deg = {-0.1, 0}}),
+               std::invalid_argument);
+  EXPECT_THROW(ServoBelief({.min_delay_frames = 2,
+                            .max_delay_frames = 2,
+                            .initial = {},
+                            .max_step_deg = {4, 4},
+                            .play_deg = {0, 11}}),
+               std::invalid_argument);
+}
+
 // Remembers the input of its last Update; holds the servos where they are.
 class RecordingController final : public Controller {
  public:
