@@ -106,15 +106,14 @@ std::size_t ConnectionBudget() {
 // the fixation controller resolves it (the command in effect when the latency jitters). The
 // servos turn at their configured rate (ServoLimits::max_rate_deg_per_s: the rated speed or
 // less), so a command is reached over the frames that takes.
-std::shared_ptr<ServoBelief> MakeServoBelief(const ServoConfig& servo, double fps,
-                                             int delay_frames, int max_delay_frames,
-                                             ServoTargets play_deg) {
-  return std::make_shared<ServoBelief>(ServoBeliefOptions{
-      delay_frames, std::max(delay_frames, max_delay_frames),
-      ServoTargets{servo.pan.limits.park_deg, servo.tilt.limits.park_deg},
-      ServoTargets{servo.pan.limits.max_rate_deg_per_s / fps,
-                   servo.tilt.limits.max_rate_deg_per_s / fps},
-      play_deg});
+std::shared_ptr<ServoBelief> MakeServoBelief(const ServoConfig& servo, double fps, int delay_frames,
+                                             int max_delay_frames, ServoTargets play_deg) {
+  return std::make_shared<ServoBelief>(
+      ServoBeliefOptions{delay_frames, std::max(delay_frames, max_delay_frames),
+                         ServoTargets{servo.pan.limits.park_deg, servo.tilt.limits.park_deg},
+                         ServoTargets{servo.pan.limits.max_rate_deg_per_s / fps,
+                                      servo.tilt.limits.max_rate_deg_per_s / fps},
+                         play_deg});
 }
 
 }  // namespace

@@ -215,14 +215,18 @@ def main():
         # Frame 0 is the reference: the swing's offsets start from 0 there.
         open_x = [0.0] + [float(r["open_x"]) for r in rows]
         open_y = [0.0] + [float(r["open_y"]) for r in rows]
+        # The aims are the same in every draw unless the causal loop sees fresh noise in each.
+        redrawn = a.bound == "causal" and any(noise > 0 for noise in a.noise_px)
+        if a.bound == "oracle":
+            aims = [aim_of_oracle(o, a.latency) for o in (open_x, open_y)]
+        elif not redrawn:
+            aims = [aim_of_causal(o, a.latency, a.lags) for o in (open_x, open_y)]
         bound_sq = [0.0] * len(rows)
         for draw in range(a.draws):
             rng = random.Random(seed * 1000 + draw)
-            if a.bound == "causal":
+            if redrawn:
                 aims = [aim_of_causal(o, a.latency, a.lags, noise, rng)
                         for o, noise in zip((open_x, open_y), a.noise_px)]
-            else:
-                aims = [aim_of_oracle(o, a.latency) for o in (open_x, open_y)]
             ex = oracle_errors(open_x, px_per_deg, a.command_rate_deg, a.servo_rate_deg,
                                a.latency, rng, aims[0])
             ey = oracle_errors(open_y, px_per_deg, a.command_rate_deg, a.servo_rate_deg,

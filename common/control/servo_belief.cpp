@@ -10,7 +10,7 @@ namespace kapfix {
 namespace {
 
 constexpr int kMaxDelayFrames = 1000;
-constexpr double kMaxPlayDeg = 10;  // [deg] a servo with more play than this is broken (message)
+constexpr int kMaxPlayDeg = 10;  // [deg] a servo with more play than this is broken
 // [frames] a view older than this no longer says where the swing is now: the extrapolation
 // restarts from the next measured frame.
 constexpr std::int64_t kMaxViewGapFrames = 3;
@@ -81,7 +81,7 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
   if (!(play_deg.pan_deg >= 0 && play_deg.pan_deg <= kMaxPlayDeg) ||
       !(play_deg.tilt_deg >= 0 && play_deg.tilt_deg <= kMaxPlayDeg)) {
     if (error) {
-      *error = "servo play must be 0…10 deg, got " +
+      *error = "servo play must be 0…" + std::to_string(kMaxPlayDeg) + " deg, got " +
                std::to_string(play_deg.pan_deg) + " (pan), " + std::to_string(play_deg.tilt_deg) +
                " (tilt)";
     }
@@ -150,7 +150,7 @@ std::vector<Candidate> InEffectOrNewer(const std::vector<Candidate>& candidates,
 }  // namespace
 
 ServoBelief::Pose ServoBelief::Reached(const std::deque<View>& views, double max_step_deg,
-                                      double play_deg, double command_deg) const {
+                                       double play_deg, double command_deg) const {
   if (views.empty()) return {command_deg, command_deg};
   const View& last = views.back();
   const double step = max_step_deg * static_cast<double>(exposed_ - last.frame);
@@ -223,8 +223,7 @@ void ServoBelief::ScoreScales(Axis* a, double px_per_deg) {
   if (a->scale_miss_sq[best] < kScaleMargin * a->scale_miss_sq[a->scale]) a->scale = best;
 }
 
-void ServoBelief::ExtendPaths(Axis* a, int axis, double displacement_px,
-                              double px_per_deg) const {
+void ServoBelief::ExtendPaths(Axis* a, int axis, double displacement_px, double px_per_deg) const {
   const double max_step = Of(options_.max_step_deg, axis);
   const double play = Of(options_.play_deg, axis);
   // A path's cost grows by each frame's miss against its own extrapolation (Gaussian, with
