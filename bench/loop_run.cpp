@@ -19,7 +19,8 @@ void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
   out << "frame,err_x,err_y,true_pan,true_tilt,believed_pan,believed_tilt,commanded_pan,"
          "commanded_tilt,measured_x,measured_y,confidence,lock_lost,off_target,open_x,open_y,"
          "pan_forecaster,pan_forecast_weight,pan_calibration_ratio,pan_belief_calibration_ratio,"
-         "roll_read_deg,roll_true_deg\n";
+         "roll_read_deg,roll_true_deg,tilt_forecaster,tilt_forecast_weight,tilt_calibration_ratio,"
+         "tilt_belief_calibration_ratio\n";
   for (std::size_t k = 0; k < f.view_offsets.size(); ++k) {
     out << k + 1 << ',' << f.view_offsets[k].x << ',' << f.view_offsets[k].y << ','
         << f.angles[k].pan_deg << ',' << f.angles[k].tilt_deg << ',' << f.believed[k].pan_deg << ','
@@ -29,7 +30,9 @@ void WriteTrace(const std::string& path, const ClosedLoopFigures& f) {
         << f.open_offsets[k].x << ',' << f.open_offsets[k].y << ',' << f.pan_forecast[k].forecaster
         << ',' << f.pan_forecast[k].weight << ',' << f.pan_forecast[k].calibration_ratio << ','
         << f.pan_forecast[k].belief_calibration_ratio << ',' << f.roll_read_deg[k] << ','
-        << f.roll_true_deg[k] << '\n';
+        << f.roll_true_deg[k] << ',' << f.tilt_forecast[k].forecaster << ','
+        << f.tilt_forecast[k].weight << ',' << f.tilt_forecast[k].calibration_ratio << ','
+        << f.tilt_forecast[k].belief_calibration_ratio << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
@@ -48,6 +51,7 @@ void DropPerFrame(ClosedLoopFigures* f) {
   f->view_offsets = {};
   f->open_offsets = {};
   f->pan_forecast = {};
+  f->tilt_forecast = {};
   f->measured_x = {};
   f->measured_y = {};
   f->confidence = {};

@@ -10,7 +10,6 @@ namespace kapfix {
 namespace {
 
 constexpr int kMaxDelayFrames = 1000;
-constexpr int kMaxPlayDeg = 10;  // [deg] a servo with more play than this is broken
 // [frames] a view older than this no longer says where the swing is now: the extrapolation
 // restarts from the next measured frame.
 constexpr std::int64_t kMaxViewGapFrames = 3;
@@ -33,6 +32,17 @@ constexpr int kMinScaleFrames = 3;  // [frames] scored before another scale may 
 // axis to P for 100 frames (measured: aero1 realistic seed 2, 13.9 px with 15 frames and a
 // 0.7 margin, 7.0 px with these).
 constexpr double kScaleMargin = 0.9;
+// An axis's views tell the scales apart where their miss grows clearly away from the best
+// scale: its sharpness, the grid's worst over best miss (squared px) less 1, at least this.
+// Realistic world, aero1.jpg, 10 seeds, scored over whole flights with the servos' true
+// angles: pan's was 10–30; tilt's, under a swing of 6–8 px SD that is mostly unforecastable
+// sway and jitter, 0.02–0.3, with its best scale at the grid's end (the servo follows
+// forecasts of the views' noise, so a larger scale cancels some of it): tilt flew at 0.65 ×
+// the true deg/px. Over the belief's ~20-frame memory tilt's still reached 1 at times.
+constexpr double kMinSharpness = 1.0;
+// An axis keeps a scale of its own only while it is at least this share of the other's
+// sharpness; a duller one takes the sharper axis's scale (both look through one lens).
+constexpr double kOwnSharpnessShare = 0.25;
 
 const ServoBeliefOptions& Validated(const ServoBeliefOptions& options) {
   std::string error;
@@ -78,12 +88,12 @@ bool ServoBeliefOptions::IsValid(std::string* error) const {
     }
     return false;
   }
-  if (!(play_deg.pan_deg >= 0 && play_deg.pan_deg <= kMaxPlayDeg) ||
-      !(play_deg.tilt_deg >= 0 && play_deg.tilt_deg <= kMaxPlayDeg)) {
+  if (!(play_deg.pan_deg >= 0 && play_deg.pan_deg <= kMaxServoPlayDeg) ||
+      !(play_deg.tilt_deg >= 0 && play_deg.tilt_deg <= kMaxServoPlayDeg)) {
     if (error) {
-      *error = "servo play must be 0…" + std::to_string(kMaxPlayDeg) + " deg, got " +
-               std::to_string(play_deg.pan_deg) + " (pan), " + std::to_string(play_deg.tilt_deg) +
-               " (tilt)";
+      *error = "servo play must be 0…" + std::to_string(static_cast<int>(kMaxServoPlayDeg)) +
+               " deg, got " + std::to_string(play_deg.pan_deg) + " (pan), " +
+               std::to_string(play_deg.tilt_deg) + " (tilt)";
     }
     return false;
   }
@@ -216,11 +226,34 @@ void ServoBelief::ScoreScales(Axis* a, double px_per_deg) {
     const double miss = newest.deg * theta + newest.displacement_px - Predict(views, theta);
     a->scale_miss_sq[h] += kSpreadRate * (miss * miss - a->scale_miss_sq[h]);
   }
-  if (++a->scored < kMinScaleFrames) return;
-  const auto best =
-      static_cast<std::size_t>(std::min_element(a->scale_miss_sq.begin(), a->scale_miss_sq.end()) -
-                               a->scale_miss_sq.begin());
-  if (a->scale_miss_sq[best] < kScaleMargin * a->scale_miss_sq[a->scale]) a->scale = best;
+  ++a->scored;
+}
+
+double ServoBelief::Sharpness(const Axis& a) const {
+  if (a.scored < kMinScaleFrames) return 0;
+  const auto [low, high] = std::minmax_element(a.scale_miss_sq.begin(), a.scale_miss_sq.end());
+  return *low > 0 ? *high / *low - 1 : 0;
+}
+
+void ServoBelief::ChooseScales() {
+  // Both axes look through one lens, so a calibration off by a factor is off by it on both:
+  // an axis whose views tell the scales apart far less well than the other's takes the
+  // other's. (Servos whose degrees differ per axis are left to the controller's estimate,
+  // which each axis fits alone once its swing is large enough.)
+  const std::array<double, 2> sharpness = {Sharpness(axes_[0]), Sharpness(axes_[1])};
+  std::array<bool, 2> own{};
+  for (std::size_t axis = 0; axis < 2; ++axis) {
+    own[axis] = sharpness[axis] >= kMinSharpness &&
+                sharpness[axis] >= kOwnSharpnessShare * sharpness[1 - axis];
+    if (!own[axis]) continue;
+    Axis& a = axes_[axis];
+    const auto best = static_cast<std::size_t>(
+        std::min_element(a.scale_miss_sq.begin(), a.scale_miss_sq.end()) - a.scale_miss_sq.begin());
+    if (a.scale_miss_sq[best] < kScaleMargin * a.scale_miss_sq[a.scale]) a.scale = best;
+  }
+  for (std::size_t axis = 0; axis < 2; ++axis) {
+    if (!own[axis] && own[1 - axis]) axes_[axis].scale = axes_[1 - axis].scale;
+  }
 }
 
 void ServoBelief::ExtendPaths(Axis* a, int axis, double displacement_px, double px_per_deg) const {
@@ -310,6 +343,7 @@ ServoTargets ServoBelief::Resolve(const ControlInput& input, const LensCalibrati
   } else {
     believed_ = {ResolveAxis(0, d.x, calibration.pan_deg_per_px),
                  ResolveAxis(1, d.y, calibration.tilt_deg_per_px)};
+    ChooseScales();
   }
   return believed_;
 }

@@ -12,6 +12,9 @@
 
 namespace kapfix {
 
+// [deg] a servo with more play than this is broken (ServoBeliefOptions::play_deg).
+inline constexpr double kMaxServoPlayDeg = 10;
+
 struct ServoBeliefOptions {
   // [frames] from the capture of a frame to the first frame that shows the command sent for
   // it: 1 + the servo's latency, at its shortest and its longest (equal: a fixed latency).
@@ -82,7 +85,8 @@ std::vector<double> DelayShares(int spread);
 // RMS against 5.6–7.4 with the true deg/px in the belief). So each axis also scores a grid
 // of scales of the given calibration (×0.5…2) by how well the resolved views continue under
 // each, and reconstructs its views with the best one once it is clearly better than the
-// given calibration (scale()).
+// given calibration (scale()). Both axes see through one lens: an axis whose views tell the
+// scales apart far less well (a small, noisy swing) takes the other axis's.
 class ServoBelief {
  public:
   // Throws std::invalid_argument for options that are not IsValid.
@@ -162,8 +166,14 @@ class ServoBelief {
   Pose Reached(const std::deque<View>& views, double max_step_deg, double play_deg,
                double command_deg) const;
   double ResolveAxis(int axis, double displacement_px, double deg_per_px);
-  // Scores each scale on the newest view and picks the one to use.
+  // Scores each scale on the newest view.
   void ScoreScales(Axis* a, double px_per_deg);
+  // [1] how clearly an axis's scored views tell the scales apart: the grid's worst over best
+  // miss, less 1 (0 before kMinScaleFrames).
+  double Sharpness(const Axis& a) const;
+  // Per axis, the scale its views are reconstructed with from the next frame on: its own best
+  // once clearly better, or, while its views tell far less than the other's, the other's.
+  void ChooseScales();
 
   ServoBeliefOptions options_;
   std::vector<double> scales_;  // [1] the grid of calibration scales, scales_[0] = 1

@@ -313,6 +313,7 @@ class ClosedLoopRun {
     figures_.believed.push_back({kNan, kNan});
     figures_.commanded.push_back({kNan, kNan});
     figures_.pan_forecast.push_back({kNan, kNan, kNan, kNan});
+    figures_.tilt_forecast.push_back({kNan, kNan, kNan, kNan});
     figures_.roll_read_deg.push_back(kNan);
     figures_.roll_true_deg.push_back(kNan);
     lost_ += lock_lost_ ? 1 : 0;
@@ -361,19 +362,26 @@ class ClosedLoopRun {
     if (predictive_ && (predictive_->predicting_pan() || predictive_->predicting_tilt())) {
       ++predicting_;
     }
-    figures_.pan_forecast.push_back(PanForecast());
+    figures_.pan_forecast.push_back(AxisForecast(0));
+    figures_.tilt_forecast.push_back(AxisForecast(1));
     loop_us_.push_back(step.loop_us);
     total_us_ += step.loop_us;
   }
 
-  ClosedLoopFigures::PanForecast PanForecast() const {
+  // `axis`: 0 pan, 1 tilt.
+  ClosedLoopFigures::AxisForecast AxisForecast(int axis) const {
     if (!predictive_) return {kNan, kNan, kNan, kNan};
-    const double forecaster = predictive_->predicting_pan()
-                                  ? static_cast<double>(predictive_->pan_predictor().chosen())
-                                  : 0.0;
-    return {forecaster, predictive_->pan_forecast_weight(),
-            predictive_->calibration().pan_deg_per_px * platform_options_.px_per_deg,
-            belief_->Scaled(calibration_).pan_deg_per_px * platform_options_.px_per_deg};
+    const bool pan = axis == 0;
+    const bool predicting = pan ? predictive_->predicting_pan() : predictive_->predicting_tilt();
+    const SwingPredictor& predictor =
+        pan ? predictive_->pan_predictor() : predictive_->tilt_predictor();
+    const auto deg_per_px = [pan](const LensCalibration& c) {
+      return pan ? c.pan_deg_per_px : c.tilt_deg_per_px;
+    };
+    return {predicting ? static_cast<double>(predictor.chosen()) : 0.0,
+            pan ? predictive_->pan_forecast_weight() : predictive_->tilt_forecast_weight(),
+            deg_per_px(predictive_->calibration()) * platform_options_.px_per_deg,
+            deg_per_px(belief_->Scaled(calibration_)) * platform_options_.px_per_deg};
   }
 
   const ClosedLoopOptions& options_;

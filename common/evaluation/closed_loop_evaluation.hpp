@@ -130,15 +130,16 @@ struct ClosedLoopFigures {
   // +y: the camera's roll since the reference, negated)
   std::vector<double> roll_read_deg;
   std::vector<double> roll_true_deg;
-  // The predictive controller's pan axis after each frame (NaN: another controller, or a
-  // dropped frame): what it acted on (0 plain P, 1 the last step extrapolated, 2 the swing
+  // The predictive controller's axes after each frame (NaN: another controller, or a
+  // dropped frame): what each acted on (0 plain P, 1 the last step extrapolated, 2 the swing
   // model; SwingPredictor::Forecaster), the forecast's weight against P [0, 1], and the
   // calibration it acts on ÷ the true deg/px, and the servo belief's (ServoBelief::scale) ÷ the
   // true deg/px.
-  struct PanForecast {
+  struct AxisForecast {
     double forecaster, weight, calibration_ratio, belief_calibration_ratio;
   };
-  std::vector<PanForecast> pan_forecast;
+  std::vector<AxisForecast> pan_forecast;
+  std::vector<AxisForecast> tilt_forecast;
 };
 
 // Runs the loop: frame 0 (after SSP: the frame after the free swing) becomes the reference,

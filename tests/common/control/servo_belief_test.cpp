@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -144,7 +145,8 @@ TEST(ServoBeliefTest, FindsTheCalibrationScaleAndResolvesUnderJitterWithACalibra
   EXPECT_GE(right, counted * 90 / 100) << right << " of " << counted;
   // px per deg: the true 10 is 1.3 × the given calibration's 7.7; the grid steps by 6 %.
   EXPECT_NEAR(belief.scale(0), 1.3, 0.08);
-  EXPECT_DOUBLE_EQ(belief.scale(1), 1.0);  // tilt never moved: nothing to tell scales apart
+  // Tilt never moved, so its views tell no scale; it looks through the same lens as pan.
+  EXPECT_DOUBLE_EQ(belief.scale(1), belief.scale(0));
 }
 
 // The calibration ×1.3 off (the realistic world's) is found within the lock-on's first
@@ -169,6 +171,76 @@ TEST(ServoBeliefTest, FindsACalibrationOffWithinTheFirstFramesOfTheLockOn) {
   }
   ASSERT_GE(found_at, 0) << "scale ends at " << belief.scale(0);
   EXPECT_LE(found_at, 10);
+}
+
+// Both axes through the jittery servo, the belief given the calibration ×`pan_off` (pan) and
+// ×`tilt_off` (tilt) the true deg/px: pan's view swings 100 px, tilt's is `tilt_swing` [px]
+// plus white noise of `tilt_noise_px` SD, and each axis's commands cancel what the loop
+// would forecast through its calibration: the swing 2.5 frames ahead, or, for a noisy tilt,
+// its last measured view, noise and all, as a loop does where the swing cannot be forecast.
+struct TwoAxisFlight {
+  double pan_off = 1.3;
+  double tilt_off = 1.3;
+  double (*tilt_swing)(double t) = nullptr;
+  double tilt_noise_px = 0;
+  double measurement_noise_px = 0.3;  // [px] SD on both axes, as a matcher's
+  int frames = 400;
+
+  ServoBelief Fly() const {
+    SimulatedServo pan(JitteryServo());
+    SimulatedServoOptions tilt_options = JitteryServo();
+    tilt_options.seed = 11;
+    SimulatedServo tilt(tilt_options);
+    ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 3, .initial = {0, 0}});
+    const LensCalibration given{pan_off * kLens.pan_deg_per_px, tilt_off * kLens.tilt_deg_per_px};
+    const auto pan_swing = [](double t) { return 100 * std::sin(2 * std::numbers::pi * t / 40); };
+    std::mt19937 random(5);
+    std::normal_distribution<double> noise(0, tilt_noise_px > 0 ? tilt_noise_px : 1);
+    std::normal_distribution<double> matcher(0, measurement_noise_px);
+    for (int t = 0; t < frames; ++t) {
+      if (t > 0) {
+        pan.Step();
+        tilt.Step();
+      }
+      const double tilt_view = tilt_swing(t) + (tilt_noise_px > 0 ? noise(random) : 0.0);
+      const double dx = -(pan_swing(t) + pan.angle() / kLens.pan_deg_per_px) + matcher(random);
+      const double dy = -(tilt_view + tilt.angle() / kLens.tilt_deg_per_px) + matcher(random);
+      belief.Expose(t);
+      belief.Resolve(Measured(dx, dy), given);
+      const double tilt_aim = tilt_noise_px > 0 ? tilt_view : tilt_swing(t + 2.5);
+      const ServoTargets command{-pan_swing(t + 2.5) * given.pan_deg_per_px,
+                                 -tilt_aim * given.tilt_deg_per_px};
+      pan.Command(command.pan_deg);
+      tilt.Command(command.tilt_deg);
+      belief.Sent(t, command);
+    }
+    return belief;
+  }
+};
+
+// A realistic world's tilt: a small swing that is mostly noise the loop cannot forecast, and
+// a servo that follows it. Its own views barely tell the scales apart, and they lean to the
+// grid's end (the servo's turns cancel some of the noise); the lens is the one pan sees
+// through, so tilt takes pan's scale.
+TEST(ServoBeliefTest, AnAxisWhoseNoisySwingTellsLittleTakesTheOtherAxissScale) {
+  TwoAxisFlight flight;
+  flight.tilt_swing = [](double t) { return 5 * std::sin(2 * std::numbers::pi * t / 300); };
+  flight.tilt_noise_px = 3;
+  const ServoBelief belief = flight.Fly();
+  EXPECT_NEAR(belief.scale(0), 1.3, 0.08);
+  EXPECT_DOUBLE_EQ(belief.scale(1), belief.scale(0));
+}
+
+// Servos whose degrees differ per axis: with both axes swinging, each finds its own scale.
+// (An axis keeps its own only while its views tell the scales apart at least a quarter as
+// clearly as the other's; a far duller one takes the other's.)
+TEST(ServoBeliefTest, TwoSwingingAxesKeepTheirOwnScales) {
+  TwoAxisFlight flight;
+  flight.tilt_off = 0.8;
+  flight.tilt_swing = [](double t) { return 80 * std::sin(2 * std::numbers::pi * t / 55); };
+  const ServoBelief belief = flight.Fly();
+  EXPECT_NEAR(belief.scale(0), 1.3, 0.08);
+  EXPECT_NEAR(belief.scale(1), 0.8, 0.05);
 }
 
 // A servo that turns at most 4 deg a frame, commands up to 3 deg a frame apart and a latency
@@ -302,7 +374,9 @@ TEST(ServoBeliefControllerTest, HandsTheControllerTheCalibrationItsViewsAgreeWit
   }
   EXPECT_NEAR(seen->last_input.pan_deg_per_px_hint, kLens.pan_deg_per_px,
               0.08 * kLens.pan_deg_per_px);
-  EXPECT_DOUBLE_EQ(seen->last_input.tilt_deg_per_px_hint, off.tilt_deg_per_px);  // never moved
+  // Tilt never moved, so its views tell no scale: it takes pan's (one lens), near the truth.
+  EXPECT_NEAR(seen->last_input.tilt_deg_per_px_hint, kLens.tilt_deg_per_px,
+              0.08 * kLens.tilt_deg_per_px);
 }
 
 TEST(ServoBeliefTest, RefusesAnEmptyDelayRange) {

@@ -59,6 +59,7 @@ INSTANTIATE_TEST_SUITE_P(CalibrationErrors, OnlineCalibrationTest, ::testing::Va
 TEST(OnlineCalibrationTest, ThePanForecastTraceFollowsTheCalibrationToTheTruth) {
   const ClosedLoopFigures f = Fly(1.6, /*adapt=*/true);
   ASSERT_EQ(f.pan_forecast.size(), f.view_offsets.size());
+  ASSERT_EQ(f.tilt_forecast.size(), f.view_offsets.size());
   EXPECT_DOUBLE_EQ(f.pan_forecast.front().calibration_ratio, 1.6);
   EXPECT_NEAR(f.pan_forecast.back().calibration_ratio, 1.0, 0.1);
   EXPECT_EQ(f.pan_forecast.back().forecaster, 2.0);  // the swing model, once fitted
