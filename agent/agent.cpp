@@ -243,8 +243,8 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
   MonotonicClockUs clock = SteadyClockNowUs;
   std::unique_ptr<ServoDriver> backend;
   int max_delay_frames = 0;  // [frames] the longest actuation delay (latency jitter); 0: fixed
-  // [deg] the servos' play, known for the simulated ones as their latency is; on hardware
-  // none is assumed (not yet configurable or estimated: left for later).
+  // [deg] the servos' play: the simulated ones' own, as their latency is; on hardware the
+  // configured servo.*.play_deg (not yet estimated while flying).
   ServoTargets servo_play{0, 0};
 
   if (simulated_) {
@@ -277,6 +277,7 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
     source_ = MakeCamera(config_.camera);
     backend = MakeServoBackend(config_.servo);
     pipeline.actuation_delay_frames = kHardwareActuationDelayFrames;
+    servo_play = {config_.servo.pan.play_deg, config_.servo.tilt.play_deg};
   }
   predictive.predictor.lead_frames = pipeline.actuation_delay_frames;
   // With a jittering latency, aimed at every delay it may take (as the evaluation does).

@@ -53,6 +53,7 @@ void ReadServoAxis(ConfigReader& r, ServoAxisConfig* c) {
   r.Read("max_deg", &c->limits.max_deg);
   r.Read("max_rate_deg_per_s", &c->limits.max_rate_deg_per_s);
   r.Read("park_deg", &c->limits.park_deg);
+  r.Read("play_deg", &c->play_deg);
 }
 
 void ReadServo(ConfigReader& r, ServoConfig* c) {

@@ -39,6 +39,13 @@ bool AxisIsValid(const ServoAxisConfig& axis, const char* name, std::string* err
     if (error) *error = std::string("servo.") + name + ": " + reason;
     return false;
   }
+  if (!(axis.play_deg >= 0 && axis.play_deg <= kMaxServoPlayDeg)) {
+    if (error) {
+      *error = fmt::format("servo.{}: play_deg must be 0…{:g} deg, got {:g}", name,
+                           kMaxServoPlayDeg, axis.play_deg);
+    }
+    return false;
+  }
   const ServoChannelMapping& m = axis.mapping;
   const double a = m.center_us + axis.limits.min_deg * m.us_per_deg;
   const double b = m.center_us + axis.limits.max_deg * m.us_per_deg;

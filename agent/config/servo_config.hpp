@@ -7,6 +7,7 @@
 #include "agent/servo/maestro_servo_driver.hpp"
 #include "agent/servo/pca9685_servo_driver.hpp"
 #include "agent/servo/servo_channel_mapping.hpp"
+#include "common/control/servo_belief.hpp"
 #include "common/control/servo_limits.hpp"
 
 namespace kapfix::agent {
@@ -24,6 +25,11 @@ std::string_view ToString(ServoBackend backend);
 struct ServoAxisConfig {
   ServoChannelMapping mapping;
   ServoLimits limits;
+  // [deg] the servo's play (backlash): how far its shaft turns back before the output
+  // follows. The servo belief drags the output behind the shaft through it; taken as 0 on a
+  // servo that has play, the belief is off by half the play on almost every frame. 0…10
+  // (kMaxServoPlayDeg). Under --sim the simulated servos' own play is used instead.
+  double play_deg = 0;
 };
 
 // The "servo" section. Defaults: resources/README.md.

@@ -192,6 +192,26 @@ TEST_F(AgentConfigFileTest, ServoLimitOutsideItsPulseRangeIsAnError) {
   EXPECT_NE(error.find("servo.pan: limits"), std::string::npos) << error;
 }
 
+TEST_F(AgentConfigFileTest, ReadsEachServosPlay) {
+  AgentConfig config;
+  std::string error;
+  ASSERT_TRUE(
+      LoadAgentConfig(Write(R"({"servo": {"pan": {"play_deg": 0.3}, "tilt": {"play_deg": 0.5}}})"),
+                      &config, &error))
+      << error;
+  EXPECT_DOUBLE_EQ(config.servo.pan.play_deg, 0.3);
+  EXPECT_DOUBLE_EQ(config.servo.tilt.play_deg, 0.5);
+  EXPECT_DOUBLE_EQ(AgentConfig{}.servo.pan.play_deg, 0.0);  // none assumed unless configured
+}
+
+TEST_F(AgentConfigFileTest, APlayThatIsNegativeOrBeyondABrokenServosIsAnError) {
+  for (const char* play : {"-0.1", "10.5"}) {
+    const std::string error =
+        LoadError(std::string(R"({"servo": {"tilt": {"play_deg": )") + play + "}}}");
+    EXPECT_NE(error.find("servo.tilt: play_deg"), std::string::npos) << play << ": " << error;
+  }
+}
+
 TEST_F(AgentConfigFileTest, ParkOutsideTheLimitsIsAnError) {
   const std::string error = LoadError(R"({"servo": {"tilt": {"park_deg": -60}}})");
   EXPECT_NE(error.find("servo.tilt:"), std::string::npos) << error;
