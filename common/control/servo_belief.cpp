@@ -348,6 +348,22 @@ ServoTargets ServoBelief::Resolve(const ControlInput& input, const LensCalibrati
   return believed_;
 }
 
+ServoTargets ServoBelief::ShaftCommand(const ServoTargets& output_target) const {
+  // The horn lags a shaft that turns one way by half the play: commanded at the target, the
+  // servo stopped that short of it on every move (simulated 0.1° play: 0.5 px behind the
+  // swing on both axes).
+  const auto axis_command = [this](int axis, double target) {
+    const double half = Of(options_.play_deg, axis) / 2;
+    const double output = Of(believed_, axis);
+    if (half == 0 || !std::isfinite(output)) return target;
+    if (target > output) return target + half;
+    if (target < output) return target - half;
+    const std::deque<View>& views = axes_[static_cast<std::size_t>(axis)].paths.front().views;
+    return views.empty() || views.back().frame != exposed_ ? target : views.back().shaft_deg;
+  };
+  return {axis_command(0, output_target.pan_deg), axis_command(1, output_target.tilt_deg)};
+}
+
 void ServoBelief::ForgetViews() {
   for (Axis& a : axes_) a.paths = {Path{{}, a.paths.front().in_effect, 0}};
 }

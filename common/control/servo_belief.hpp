@@ -103,6 +103,11 @@ class ServoBelief {
   ServoTargets Resolve(const ControlInput& input, const LensCalibration& calibration);
   // Forgets the views (a new reference: displacements are measured against another frame).
   void ForgetViews();
+  // The command that brings the servos' outputs (the camera) to `output_target` [deg]: a
+  // shaft drags its output through the play, so it is sent half the play beyond the target
+  // on the side the output must move to from where it is believed; a target at the believed
+  // output leaves the shaft where it is believed. Without play, the target itself.
+  ServoTargets ShaftCommand(const ServoTargets& output_target) const;
 
   // [deg] the belief for the exposed frame: Resolve's choice once it ran, else Expose's mean.
   const ServoTargets& Believed() const { return believed_; }

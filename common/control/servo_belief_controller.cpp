@@ -22,7 +22,7 @@ ServoTargets ServoBeliefController::Update(const ControlInput& input,
   const LensCalibration agreed = belief_->Scaled(calibration_);
   hinted.pan_deg_per_px_hint = agreed.pan_deg_per_px;
   hinted.tilt_deg_per_px_hint = agreed.tilt_deg_per_px;
-  return controller_->Update(hinted, seen);
+  return belief_->ShaftCommand(controller_->Update(hinted, seen));
 }
 
 void ServoBeliefController::Reset() {

@@ -18,7 +18,8 @@ namespace kapfix {
 // itself (ServoBelief::scale): a calibration ×1.3 off roughened them enough to pick the wrong
 // command of two. That scale of the stored calibration goes to the controller as the frame's
 // calibration hint (ControlInput), which a predictive controller acts on until its own
-// estimate is trusted.
+// estimate is trusted. The controller aims the servos' outputs (the camera); what is returned
+// is the command that brings them there through the servos' play (ServoBelief::ShaftCommand).
 class ServoBeliefController final : public Controller {
  public:
   // Throws std::invalid_argument for a null controller or belief, or a calibration that is

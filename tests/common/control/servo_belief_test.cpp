@@ -320,6 +320,70 @@ TEST(ServoBeliefTest, AServoWithPlayIsBelievedAtItsOutputBehindTheShaft) {
   EXPECT_GT(untold, 0.15) << "not told, half the 0.4 deg play: " << untold << " deg RMS";
 }
 
+// A servo with 0.4 deg of play and a fixed latency, aimed at a swing: the output ends where
+// the loop aims it only when the shaft is sent half the play beyond the aim on the side the
+// output moves to (ShaftCommand); sent to the aim itself, the output stops half the play
+// (2 px) short on every move.
+TEST(ServoBeliefTest, AShaftCommandBringsTheOutputThroughThePlayToTheAim) {
+  SimulatedServoOptions geared = JitteryServo();
+  geared.latency_max_frames = geared.latency_frames;
+  geared.rate_limit_deg_per_frame = 4;
+  geared.backlash_deg = 0.4;
+  const auto fly = [&geared](bool through_the_play) {
+    SimulatedServo servo(geared);
+    ServoBelief belief({.min_delay_frames = 2,
+                        .max_delay_frames = 2,
+                        .initial = {0, 0},
+                        .max_step_deg = {4, 4},
+                        .play_deg = {0.4, 0.4}});
+    const auto swing = [](double t) { return 80 * std::sin(2 * std::numbers::pi * t / 40); };
+    double miss_sq = 0;  // [px²] the view error, after the lock-on
+    int counted = 0;
+    for (int t = 0; t < 160; ++t) {
+      if (t > 0) servo.Step();
+      const double view_px = swing(t) + servo.angle() / kLens.pan_deg_per_px;
+      if (t >= 20) {
+        miss_sq += view_px * view_px;
+        ++counted;
+      }
+      belief.Expose(t);
+      belief.Resolve(Measured(-view_px, 0), kLens);
+      const ServoTargets aim{-swing(t + 2) * kLens.pan_deg_per_px, 0};
+      const ServoTargets command = through_the_play ? belief.ShaftCommand(aim) : aim;
+      servo.Command(command.pan_deg);
+      belief.Sent(t, command);
+    }
+    return std::sqrt(miss_sq / counted);
+  };
+  const double through = fly(true);
+  const double at_the_aim = fly(false);
+  EXPECT_LT(through, 0.5) << "through the play: " << through << " px RMS";
+  EXPECT_GT(at_the_aim, 1.5) << "at the aim: " << at_the_aim << " px RMS";
+}
+
+TEST(ServoBeliefTest, AShaftCommandLeadsTheAimByHalfThePlayOnTheSideTheOutputMoves) {
+  ServoBelief belief({.min_delay_frames = 1,
+                      .max_delay_frames = 1,
+                      .initial = {2, -1},
+                      .max_step_deg = {4, 4},
+                      .play_deg = {0.4, 0.2}});
+  belief.Expose(1);
+  belief.Resolve(Measured(0, 0), kLens);  // the output at the initial angles
+  const ServoTargets up = belief.ShaftCommand({3, 0});
+  EXPECT_DOUBLE_EQ(up.pan_deg, 3.2);
+  EXPECT_DOUBLE_EQ(up.tilt_deg, 0.1);
+  const ServoTargets down = belief.ShaftCommand({1, -2});
+  EXPECT_DOUBLE_EQ(down.pan_deg, 0.8);
+  EXPECT_DOUBLE_EQ(down.tilt_deg, -2.1);
+  const ServoTargets held = belief.ShaftCommand({2, -1});  // the shaft stays where it is
+  EXPECT_DOUBLE_EQ(held.pan_deg, 2);
+  EXPECT_DOUBLE_EQ(held.tilt_deg, -1);
+  ServoBelief without_play({.min_delay_frames = 1, .max_delay_frames = 1, .initial = {2, -1}});
+  without_play.Expose(1);
+  without_play.Resolve(Measured(0, 0), kLens);
+  EXPECT_DOUBLE_EQ(without_play.ShaftCommand({3, 0}).pan_deg, 3);
+}
+
 TEST(ServoBeliefTest, RefusesAPlayThatIsNegativeOrBeyondABrokenServos) {
   EXPECT_THROW(ServoBelief({.min_delay_frames = 2,
                             .max_delay_frames = 2,
