@@ -25,6 +25,7 @@ reference counts as still, so it is for the first-frame and moving starts only.
 
 Usage: bench/loop-oracle-bound.py TRACE_DIR [--controller predictive] [--start first-frame]
                                    [--bound oracle|causal] [--lags 12] [--noise-px X Y]
+                                   [--servo-play DEG] [--servo-dead-band DEG] [--through-play]
 The servo figures default to the agent's built-in simulation (kapfix-bench-loop's header:
 rate limit 90 deg/s at 30 frames/s, servos 4 deg/frame, latency 1…2 frames in the realistic
 world).
@@ -98,25 +99,35 @@ def aim_of_causal(open_px, latency, lags, noise_px=0.0, rng=None):
     return lambda t: sum(w * x for w, x in zip(weights, past(t))) if t >= 1 else 0.0
 
 
-def oracle_errors(open_px, px_per_deg, command_rate_deg, servo_rate_deg, latency, rng, aim=None):
+def oracle_errors(open_px, px_per_deg, command_rate_deg, servo_rate_deg, latency, rng, aim=None,
+                  servo=(0.0, 0.0, False)):
     """[px] the view error per frame over one axis's open-loop swing of a loop that commands
-    -aim(t) after frame t (default: the oracle's aim)."""
+    -aim(t) after frame t (default: the oracle's aim). servo = (play [deg], dead band [deg],
+    through the play): the shaft moves only towards a target at least the dead band away, and
+    drags the output (the camera) through the play; through the play, the command is sent half
+    the play beyond the aim on the side the output must move to (ServoBelief::ShaftCommand)."""
+    play_deg, dead_band_deg, through_play = servo
     n = len(open_px)
     aim = aim or aim_of_oracle(open_px, latency)
     command = angle = target = 0.0
+    shaft = 0.0
     newest = -1
     pending = []  # (frame it first acts on, order, angle [deg])
     errors = []
     for t in range(n):
         errors.append(open_px[t] + px_per_deg * angle)
         want = -aim(t) / px_per_deg
+        if through_play and want != angle:
+            want += play_deg / 2 if want > angle else -play_deg / 2
         command = max(command - command_rate_deg, min(command + command_rate_deg, want))
         pending.append((t + 1 + rng.randint(latency[0], latency[1]), t, command))
         for arrives, order, value in pending:
             if arrives <= t + 1 and order > newest:
                 newest, target = order, value
         pending = [p for p in pending if p[0] > t + 1]
-        angle += max(-servo_rate_deg, min(servo_rate_deg, target - angle))
+        if abs(target - shaft) >= dead_band_deg:
+            shaft += max(-servo_rate_deg, min(servo_rate_deg, target - shaft))
+        angle = min(max(angle, shaft - play_deg / 2), shaft + play_deg / 2)
     return errors
 
 
@@ -170,6 +181,15 @@ def main():
                              "(default: the median read from the folder's other flights)")
     parser.add_argument("--lags", type=int, default=12,
                         help="[frames] the causal bound's forecast looks back this far")
+    parser.add_argument("--servo-play", type=float, default=0.0,
+                        help="[deg] the servo's play between shaft and output (default 0; the "
+                             "simulated hobby servo's is 0.1)")
+    parser.add_argument("--servo-dead-band", type=float, default=0.0,
+                        help="[deg] the servo ignores targets nearer its shaft (default 0; the "
+                             "simulated hobby servo's is 0.05)")
+    parser.add_argument("--through-play", action="store_true",
+                        help="command half the play beyond the aim on the side the output must "
+                             "move to, as the agent does")
     a = parser.parse_args()
     if a.command_rate_deg <= 0 or a.servo_rate_deg <= 0 or a.draws < 1:
         parser.error("rates must be > 0 and --draws ≥ 1")
@@ -177,6 +197,8 @@ def main():
         parser.error("--lags must be 1…100")
     if not all(0 <= v < 100 for v in a.noise_px):
         parser.error("--noise-px must be 0…100 px per axis")
+    if not (0 <= a.servo_play <= 10 and 0 <= a.servo_dead_band <= 10):
+        parser.error("--servo-play and --servo-dead-band must be 0…10 deg")
     if a.px_per_deg is not None and not a.px_per_deg > 0:
         parser.error("--px-per-deg must be > 0")
     if a.bound == "causal" and a.start == "ssp":
@@ -227,10 +249,11 @@ def main():
             if redrawn:
                 aims = [aim_of_causal(o, a.latency, a.lags, noise, rng)
                         for o, noise in zip((open_x, open_y), a.noise_px)]
+            servo = (a.servo_play, a.servo_dead_band, a.through_play)
             ex = oracle_errors(open_x, px_per_deg, a.command_rate_deg, a.servo_rate_deg,
-                               a.latency, rng, aims[0])
+                               a.latency, rng, aims[0], servo)
             ey = oracle_errors(open_y, px_per_deg, a.command_rate_deg, a.servo_rate_deg,
-                               a.latency, rng, aims[1])
+                               a.latency, rng, aims[1], servo)
             for k in range(len(rows)):
                 bound_sq[k] += (ex[k + 1] ** 2 + ey[k + 1] ** 2) / a.draws
         loop_sq = [float(r["err_x"]) ** 2 + float(r["err_y"]) ** 2 for r in rows]

@@ -59,6 +59,22 @@ def main():
         if r_jitter.returncode == 0 and r.returncode == 0:
             if not median_figures(r_jitter.stdout)[0] > median_figures(r.stdout)[0]:
                 failures.append("latency jitter did not raise the oracle's figure")
+        # A servo's play leaves the output behind the shaft; commanded through the play, the
+        # output reaches the aim again.
+        r_play = run(script, folder, "--latency", "1", "1", "--servo-play", "0.4")
+        r_through = run(script, folder, "--latency", "1", "1", "--servo-play", "0.4",
+                        "--through-play")
+        if r_play.returncode != 0 or r_through.returncode != 0 or r.returncode != 0:
+            failures.append(f"play runs failed: {r_play.stderr} {r_through.stderr}")
+        else:
+            none = median_figures(r.stdout)[0]
+            play = median_figures(r_play.stdout)[0]
+            through = median_figures(r_through.stdout)[0]
+            if not play > none + 1.0:
+                failures.append(f"0.4 deg of play did not raise the oracle: {play} against {none}")
+            if not through < none + 0.25 * (play - none):
+                failures.append(f"through the play the oracle stayed at {through} px "
+                                f"(no play {none}, play {play})")
         # Servos that turn slowly cannot follow the swing even knowing it.
         r_slow = run(script, folder, "--latency", "1", "1", "--servo-rate-deg", "0.05")
         if r_slow.returncode == 0 and r.returncode == 0:
