@@ -223,6 +223,7 @@ def main():
     fallback = a.px_per_deg
     if fallback is None and calibrations:
         fallback = statistics.median(calibrations.values())
+    servo = (a.servo_play, a.servo_dead_band, a.through_play)
     bounds, loops = [], []
     by_scene = {}  # scene: [(bound, loop) per flight]
     for path, rows in traces.items():
@@ -249,7 +250,6 @@ def main():
             if redrawn:
                 aims = [aim_of_causal(o, a.latency, a.lags, noise, rng)
                         for o, noise in zip((open_x, open_y), a.noise_px)]
-            servo = (a.servo_play, a.servo_dead_band, a.through_play)
             ex = oracle_errors(open_x, px_per_deg, a.command_rate_deg, a.servo_rate_deg,
                                a.latency, rng, aims[0], servo)
             ey = oracle_errors(open_y, px_per_deg, a.command_rate_deg, a.servo_rate_deg,

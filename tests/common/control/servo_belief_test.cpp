@@ -42,6 +42,18 @@ SimulatedServoOptions JitteryServo() {
   return options;
 }
 
+// The jittery servo geared like a hobby servo: it turns at most 4 deg a frame, with 0.4 deg of
+// play between shaft and output.
+SimulatedServoOptions GearedServo() {
+  SimulatedServoOptions options = JitteryServo();
+  options.rate_limit_deg_per_frame = 4;
+  options.backlash_deg = 0.4;
+  return options;
+}
+
+// [px] a fast swing (80 px, 40 frames) that reverses every 20 frames.
+double FastSwing(double t) { return 80 * std::sin(2 * std::numbers::pi * t / 40); }
+
 TEST(ServoBeliefTest, AFixedLatencyBelievesTheCommandSentThatManyFramesBefore) {
   ServoBelief belief({.min_delay_frames = 2, .max_delay_frames = 2, .initial = {5, 6}});
   EXPECT_DOUBLE_EQ(belief.Expose(1).pan_deg, 5);  // nothing sent yet: the initial angles
@@ -286,9 +298,7 @@ TEST(ServoBeliefTest, AServoThatTurnsSlowerThanTheCommandsJumpIsBelievedOnItsWay
 // half the play, so a belief that takes the output for the shaft is that far off on almost
 // every frame, and one told the play follows the output.
 TEST(ServoBeliefTest, AServoWithPlayIsBelievedAtItsOutputBehindTheShaft) {
-  SimulatedServoOptions geared = JitteryServo();
-  geared.rate_limit_deg_per_frame = 4;
-  geared.backlash_deg = 0.4;
+  const SimulatedServoOptions geared = GearedServo();
   const auto fly = [&geared](double play_deg) {
     SimulatedServo servo(geared);
     ServoBelief belief({.min_delay_frames = 2,
@@ -296,19 +306,18 @@ TEST(ServoBeliefTest, AServoWithPlayIsBelievedAtItsOutputBehindTheShaft) {
                         .initial = {0, 0},
                         .max_step_deg = {4, 4},
                         .play_deg = {play_deg, play_deg}});
-    const auto swing = [](double t) { return 80 * std::sin(2 * std::numbers::pi * t / 40); };
     double miss_sq = 0;  // [deg²] the belief's miss of the servo's output, after the lock-on
     int counted = 0;
     for (int t = 0; t < 160; ++t) {
       if (t > 0) servo.Step();
-      const double dx = -(swing(t) + servo.angle() / kLens.pan_deg_per_px);
+      const double dx = -(FastSwing(t) + servo.angle() / kLens.pan_deg_per_px);
       belief.Expose(t);
       const ServoTargets resolved = belief.Resolve(Measured(dx, 0), kLens);
       if (t >= 20) {
         miss_sq += (resolved.pan_deg - servo.angle()) * (resolved.pan_deg - servo.angle());
         ++counted;
       }
-      const double command = -swing(t + 2.5) * kLens.pan_deg_per_px;
+      const double command = -FastSwing(t + 2.5) * kLens.pan_deg_per_px;
       servo.Command(command);
       belief.Sent(t, {command, 0});
     }
@@ -325,10 +334,8 @@ TEST(ServoBeliefTest, AServoWithPlayIsBelievedAtItsOutputBehindTheShaft) {
 // output moves to (ShaftCommand); sent to the aim itself, the output stops half the play
 // (2 px) short on every move.
 TEST(ServoBeliefTest, AShaftCommandBringsTheOutputThroughThePlayToTheAim) {
-  SimulatedServoOptions geared = JitteryServo();
+  SimulatedServoOptions geared = GearedServo();
   geared.latency_max_frames = geared.latency_frames;
-  geared.rate_limit_deg_per_frame = 4;
-  geared.backlash_deg = 0.4;
   const auto fly = [&geared](bool through_the_play) {
     SimulatedServo servo(geared);
     ServoBelief belief({.min_delay_frames = 2,
@@ -336,19 +343,18 @@ TEST(ServoBeliefTest, AShaftCommandBringsTheOutputThroughThePlayToTheAim) {
                         .initial = {0, 0},
                         .max_step_deg = {4, 4},
                         .play_deg = {0.4, 0.4}});
-    const auto swing = [](double t) { return 80 * std::sin(2 * std::numbers::pi * t / 40); };
     double miss_sq = 0;  // [px²] the view error, after the lock-on
     int counted = 0;
     for (int t = 0; t < 160; ++t) {
       if (t > 0) servo.Step();
-      const double view_px = swing(t) + servo.angle() / kLens.pan_deg_per_px;
+      const double view_px = FastSwing(t) + servo.angle() / kLens.pan_deg_per_px;
       if (t >= 20) {
         miss_sq += view_px * view_px;
         ++counted;
       }
       belief.Expose(t);
       belief.Resolve(Measured(-view_px, 0), kLens);
-      const ServoTargets aim{-swing(t + 2) * kLens.pan_deg_per_px, 0};
+      const ServoTargets aim{-FastSwing(t + 2) * kLens.pan_deg_per_px, 0};
       const ServoTargets command = through_the_play ? belief.ShaftCommand(aim) : aim;
       servo.Command(command.pan_deg);
       belief.Sent(t, command);
