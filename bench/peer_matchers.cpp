@@ -50,7 +50,7 @@ SearchResult PhaseCorrelatePeer::Search(const ReferencePatch& reference, const c
   result.found = true;
   result.displacement = shift;
   result.shift = {static_cast<int>(std::lround(shift.x)), static_cast<int>(std::lround(shift.y))};
-  result.confidence = response;
+  result.confidence = result.confidence_x = result.confidence_y = response;
   result.evaluations = 1;
   result.pixels_compared = current.total();
   return result;

@@ -143,7 +143,14 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
       !last_off_target_log_ || frame.index >= *last_off_target_log_ + kOffTargetLogFrames;
   if (trailing && !trailing_ && quiet_long_enough) {
     const double off_px = std::hypot(step.match.displacement.x, step.match.displacement.y);
-    if (step.riding_out) {
+    if (step.partial) {
+      spdlog::info(
+          "frame {}: steering along {} only, not claimed: the patch is placed surely across its "
+          "stripes but hardly along them (confidence x {:.2f}, y {:.2f}); the other axis coasts "
+          "on the forecast or holds; {} frames off target since the last such line",
+          frame.index, step.trusted_x ? "x" : "y", step.match.confidence_x, step.match.confidence_y,
+          off_target_frames_);
+    } else if (step.riding_out) {
       spdlog::info(
           "frame {}: view {:.1f} px off, not claimed: the lock rides out untrusted frames until "
           "{} clear ones in a row; {} frames off target since the last such line",

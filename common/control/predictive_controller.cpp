@@ -83,14 +83,10 @@ void PredictiveController::Reset() {
 void PredictiveController::RebuildSwingModels() {
   pan_.Clear();
   tilt_.Clear();
+  // A missing displacement (NaN) is a missing sample of that axis alone.
   for (const Sample& s : recent_) {
-    if (std::isfinite(s.dx_px)) {
-      pan_.Add(s.pan_deg / calibration_.pan_deg_per_px + s.dx_px);
-      tilt_.Add(s.tilt_deg / calibration_.tilt_deg_per_px + s.dy_px);
-    } else {
-      pan_.AddMissing();
-      tilt_.AddMissing();
-    }
+    pan_.Add(s.pan_deg / calibration_.pan_deg_per_px + s.dx_px);
+    tilt_.Add(s.tilt_deg / calibration_.tilt_deg_per_px + s.dy_px);
   }
 }
 
@@ -263,33 +259,65 @@ double PredictiveController::AimAxis(const SwingPredictor& predictor, const Axis
 
 ServoTargets PredictiveController::Update(const ControlInput& input, const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
-  const bool measured = input.found && std::isfinite(d.x) && std::isfinite(d.y) &&
-                        input.confidence >= options_.min_confidence;
+  const bool usable = input.found && input.confidence >= options_.min_confidence;
+  // An axis the frame did not measure (NaN: the match was not sure along it) coasts on its
+  // forecast while the other is steered by its measurement.
+  const bool pan_measured = usable && std::isfinite(d.x);
+  const bool tilt_measured = usable && std::isfinite(d.y);
   predicting_pan_ = predicting_tilt_ = false;
   CountLostFrames(input.dt_s, current);
-  if (!measured) return Coast(input, current);
+  if (!pan_measured && !tilt_measured) return Coast(input, current);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double dx = pan_measured ? d.x : nan;
+  const double dy = tilt_measured ? d.y : nan;
 
   pan_hint_ = input.pan_deg_per_px_hint;
   tilt_hint_ = input.tilt_deg_per_px_hint;
-  pan_estimator_.Add(current.pan_deg, d.x);
-  tilt_estimator_.Add(current.tilt_deg, d.y);
-  Remember(current, d.x, d.y);
+  pan_estimator_.Add(current.pan_deg, dx);
+  tilt_estimator_.Add(current.tilt_deg, dy);
+  Remember(current, dx, dy);
   const bool rebuilt = Adapt();  // before the models take this frame: a rebuild includes it
   // The uncorrected view [px]: what the servo compensated plus what was still left (a
-  // rebuild in Adapt already added it).
+  // rebuild in Adapt already added it); NaN is a missing sample.
+  bool pan_coasts = false;
+  bool tilt_coasts = false;
   if (!rebuilt) {
-    pan_.Add(current.pan_deg / calibration_.pan_deg_per_px + d.x);
-    tilt_.Add(current.tilt_deg / calibration_.tilt_deg_per_px + d.y);
+    if (pan_measured) {
+      pan_.Add(current.pan_deg / calibration_.pan_deg_per_px + dx);
+    } else {
+      pan_coasts = pan_.AddMissing();
+    }
+    if (tilt_measured) {
+      tilt_.Add(current.tilt_deg / calibration_.tilt_deg_per_px + dy);
+    } else {
+      tilt_coasts = tilt_.AddMissing();
+    }
+  } else {
+    pan_coasts = !pan_measured && pan_.samples() > 0;
+    tilt_coasts = !tilt_measured && tilt_.samples() > 0;
   }
-  const ServoTargets proportional = fallback_.Update(input, current);
+  ControlInput measured = input;
+  measured.displacement_px = {dx, dy};
+  const ServoTargets proportional = fallback_.Update(measured, current);
 
   ServoTargets target = current;
-  GradeForecast(pan_, &pan_trust_, d.x);
-  target.pan_deg = AimAxis(pan_, pan_trust_, current.pan_deg, calibration_.pan_deg_per_px,
-                           proportional.pan_deg, &predicting_pan_);
-  GradeForecast(tilt_, &tilt_trust_, d.y);
-  target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
-                            proportional.tilt_deg, &predicting_tilt_);
+  if (pan_measured) {
+    GradeForecast(pan_, &pan_trust_, dx);
+    target.pan_deg = AimAxis(pan_, pan_trust_, current.pan_deg, calibration_.pan_deg_per_px,
+                             proportional.pan_deg, &predicting_pan_);
+  } else if (pan_coasts) {
+    target.pan_deg = *pan_.Forecast(options_.predictor.lead_frames) * calibration_.pan_deg_per_px;
+    predicting_pan_ = true;
+  }
+  if (tilt_measured) {
+    GradeForecast(tilt_, &tilt_trust_, dy);
+    target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
+                              proportional.tilt_deg, &predicting_tilt_);
+  } else if (tilt_coasts) {
+    target.tilt_deg =
+        *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
+    predicting_tilt_ = true;
+  }
   return rate_limiter_.Limit(gains_, target, current, input.dt_s);
 }
 

@@ -27,12 +27,15 @@ void ProportionalController::SetGains(const ControllerGains& gains) {
 ServoTargets ProportionalController::Update(const ControlInput& input,
                                             const ServoTargets& current) {
   const cv::Point2d d = input.displacement_px;
-  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
+  if (!input.found || (!std::isfinite(d.x) && !std::isfinite(d.y))) {
     return rate_limiter_.Unmeasured(gains_, input, current);
   }
-  const ServoTargets target{
-      current.pan_deg + gains_.p * gains_.Correctable(d.x) * calibration_.pan_deg_per_px,
-      current.tilt_deg + gains_.p * gains_.Correctable(d.y) * calibration_.tilt_deg_per_px};
+  // An axis the frame did not measure (NaN) holds.
+  const auto correction = [this](double px) {
+    return std::isfinite(px) ? gains_.p * gains_.Correctable(px) : 0.0;
+  };
+  const ServoTargets target{current.pan_deg + correction(d.x) * calibration_.pan_deg_per_px,
+                            current.tilt_deg + correction(d.y) * calibration_.tilt_deg_per_px};
   return rate_limiter_.Limit(gains_, target, current, input.dt_s);
 }
 

@@ -338,13 +338,13 @@ double ServoBelief::ResolveAxis(int axis, double displacement_px, double deg_per
 
 ServoTargets ServoBelief::Resolve(const ControlInput& input, const LensCalibration& calibration) {
   const cv::Point2d d = input.displacement_px;
-  if (!input.found || !std::isfinite(d.x) || !std::isfinite(d.y)) {
-    believed_ = {Expected(0), Expected(1)};
-  } else {
-    believed_ = {ResolveAxis(0, d.x, calibration.pan_deg_per_px),
-                 ResolveAxis(1, d.y, calibration.tilt_deg_per_px)};
-    ChooseScales();
-  }
+  // Each axis is resolved from its own measurement; one the frame did not measure (NaN: its
+  // match was not sure along it) is believed at its candidates' expected angle.
+  const bool x = input.found && std::isfinite(d.x);
+  const bool y = input.found && std::isfinite(d.y);
+  believed_ = {x ? ResolveAxis(0, d.x, calibration.pan_deg_per_px) : Expected(0),
+               y ? ResolveAxis(1, d.y, calibration.tilt_deg_per_px) : Expected(1)};
+  if (x || y) ChooseScales();
   return believed_;
 }
 

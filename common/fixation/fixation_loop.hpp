@@ -33,8 +33,12 @@ struct FixationOptions {
   // confirmed (see lock_regain_confidence), after the first. Only lock_regain_frames clear
   // frames in a row end such a run: single good frames between bad ones do not.
   // MatchConfidence sees a repetitive texture's rival (issue 9): below this the match is
-  // ambiguous or poor and must not steer the servos.
+  // ambiguous or poor and must not steer the servos. A confirmed lock on a stored reference
+  // judges each searched axis alone (SearchResult::confidence_x/y): a frame sure along one
+  // axis only steers that axis, keeps the lock, and is never claimed (Step::partial).
   double lock_lost_confidence = 0.2;
+  // Off: a frame is trusted only when it is sure along every searched axis (before session 23).
+  bool axis_trust = true;
   int lock_lost_frames = 5;
   // Once the lock is lost the loop re-acquires the stored reference: each search is centred
   // on search.origin (where the reference was) with its range widened by this factor, as far
@@ -142,8 +146,17 @@ class FixationLoop {
     SearchResult match;    // displacement in the stored-reference convention (follow: step)
     ServoTargets targets;  // [deg] what to command now
     bool lock_lost = false;
-    // The match steered the servos this frame (confident, and the lock not being re-acquired).
+    // The match steered the servos this frame on at least one axis (confident, and the lock
+    // not being re-acquired).
     bool trusted = false;
+    // Per searched axis, the match steered that axis's servo. With a stored reference a
+    // confirmed lock is steered along the axis its match is sure of while the other coasts on
+    // the controller's forecast or holds (SearchResult::confidence_x/y: a patch of stripes is
+    // placed surely across them only); such a frame keeps the lock but is never claimed.
+    // An axis not searched is never trusted.
+    bool trusted_x = false;
+    bool trusted_y = false;
+    bool partial = false;      // trusted along one of two searched axes only
     bool reacquiring = false;  // the search was widened around the stored reference
     // The loop does not claim to hold the view: the lock is lost or riding out untrusted
     // frames, this frame's match is not trusted, or it measures the view farther than

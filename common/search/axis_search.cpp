@@ -7,6 +7,7 @@ namespace kapfix {
 SearchResult AxisSearch::Search(const ReferencePatch& reference, const cv::Mat& current,
                                 const SearchOptions& options) const {
   SearchResult result;
+  result.confidence_x = result.confidence_y = 1.0;  // until searched
   cv::Point shift = options.origin;
   cv::Point2d refined(shift);
   double confidence = 1.0;
@@ -25,6 +26,7 @@ SearchResult AxisSearch::Search(const ReferencePatch& reference, const cv::Mat& 
     if (options.subpixel) distance = reference.Distance(current, probe.ShiftAt(best));
     (along_x ? shift.x : shift.y) = best;
     (along_x ? refined.x : refined.y) = sub;
+    (along_x ? result.confidence_x : result.confidence_y) = probe.Confidence();
     confidence = std::min(confidence, probe.Confidence());
     result.distance = distance;
     result.evaluations += probe.evaluations();

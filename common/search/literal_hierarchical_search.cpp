@@ -14,6 +14,7 @@ SearchResult LiteralHierarchicalSearch::Search(const ReferencePatch& reference,
                                                const cv::Mat& current,
                                                const SearchOptions& options) const {
   SearchResult result;
+  result.confidence_x = result.confidence_y = 1.0;  // until searched
   cv::Point shift = options.origin;
   double confidence = 1.0;
   int visits = 0;
@@ -45,6 +46,7 @@ SearchResult LiteralHierarchicalSearch::Search(const ReferencePatch& reference,
     if (answer_distance < 0) return result;  // nothing in the frame could be scored
     (along_x ? shift.x : shift.y) = centre;
     result.distance = answer_distance;
+    (along_x ? result.confidence_x : result.confidence_y) = probe.Confidence();
     confidence = std::min(confidence, probe.Confidence());
   }
   result.found = true;

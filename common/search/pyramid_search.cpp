@@ -311,14 +311,11 @@ void ScoreCoarseWindow(const LevelScorer<T, kChannels>& coarse, cv::Point centre
   }
 }
 
-// How clearly the coarse window's error profile has one minimum along the searched axes.
-double CoarseConfidence(const ScoreMap& scores, const SearchWindow& window) {
-  double confidence = 1.0;
-  if (window.search_x) confidence = std::min(confidence, MatchConfidence(Profile(scores, true), 1));
-  if (window.search_y) {
-    confidence = std::min(confidence, MatchConfidence(Profile(scores, false), 1));
-  }
-  return confidence;
+// How clearly the coarse window's error profile has one minimum along each searched axis
+// (1 on an axis not searched).
+cv::Point2d CoarseConfidence(const ScoreMap& scores, const SearchWindow& window) {
+  return {window.search_x ? MatchConfidence(Profile(scores, true), 1) : 1.0,
+          window.search_y ? MatchConfidence(Profile(scores, false), 1) : 1.0};
 }
 
 // Finer reduced levels: descends from twice the coarser best, all pixels, down to level 1.
@@ -410,7 +407,7 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
       std::min_element(coarse_scores.begin(), coarse_scores.end(),
                        [](const auto& a, const auto& b) { return a.second < b.second; })
           ->first;
-  const double confidence = CoarseConfidence(coarse_scores, window);
+  const cv::Point2d confidence = CoarseConfidence(coarse_scores, window);
   const int wx = (window.search_x || options.cross_range > 0) ? 1 : 0;
   const int wy = (window.search_y || options.cross_range > 0) ? 1 : 0;
   if (wx != rx || wy != ry) {
@@ -449,7 +446,10 @@ SearchResult SearchPyramid(const ReferencePatch& reference, const cv::Mat& curre
   result.shift = fine;
   result.displacement = refined;
   result.distance = scored.at(fine);
-  result.confidence = LevelsAgree(fine, coarse_best * step, step) ? confidence : 0.0;
+  const double agree = LevelsAgree(fine, coarse_best * step, step) ? 1.0 : 0.0;
+  result.confidence_x = agree * confidence.x;
+  result.confidence_y = agree * confidence.y;
+  result.confidence = std::min(result.confidence_x, result.confidence_y);
   return result;
 }
 

@@ -43,7 +43,12 @@ struct SearchResult {
   cv::Point2d displacement{0, 0};  // [px] shift with its sub-pixel part
   std::int64_t distance = 0;       // SSD at `shift`
   double confidence = 0.0;         // [0, 1] how clearly the minimum beats its best rival
-  int evaluations = 0;             // distinct distance evaluations
+  // [0, 1] the same along each axis alone, 1 on an axis not searched; `confidence` is the
+  // lower of the two. A patch of stripes (aloe leaves, a row of columns) is placed surely
+  // across them and hardly along them: the aperture problem, which one figure hides.
+  double confidence_x = 0.0;
+  double confidence_y = 0.0;
+  int evaluations = 0;  // distinct distance evaluations
   std::int64_t pixels_compared = 0;
 };
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace kapfix {
 namespace {
 
@@ -62,6 +64,21 @@ TEST(PidControllerTest, ResetClearsTheIntegral) {
 TEST(PidControllerTest, ProportionalTermCorrectsFromTheCurrentAngle) {
   PidController c(Gains(1, 0, 0), kLens);
   EXPECT_DOUBLE_EQ(c.Update(Measured(-7), {2.0, 0}).pan_deg, 2.0 - 0.7);
+}
+
+TEST(PidControllerTest, AnAxisTheFrameDidNotMeasureHoldsAndKeepsItsIntegral) {
+  PidController c(Gains(1.0, 1.0, 0.0), kLens);
+  ControlInput both = Measured(4);
+  both.displacement_px.y = 2;
+  c.Update(both, {});  // integral (2, 1) px·s over 0.5 s
+  ControlInput x_only = Measured(4);
+  x_only.displacement_px.y = std::numeric_limits<double>::quiet_NaN();
+  const ServoTargets held = c.Update(x_only, {0.0, 3.0});
+  EXPECT_DOUBLE_EQ(held.tilt_deg, 3.0);  // no correction, not even the integral's
+  EXPECT_GT(held.pan_deg, 0.4);
+  // Measured again, Y's integral goes on from the 1 px·s it had: 2 px·s, and P's 2 px.
+  const ServoTargets back = c.Update(both, {0.0, 0.0});
+  EXPECT_NEAR(back.tilt_deg, (2 + 2.0) * 0.1, 1e-9);
 }
 
 }  // namespace

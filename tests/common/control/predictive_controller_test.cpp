@@ -310,6 +310,24 @@ TEST(PredictiveControllerEstimateTest, PlainPHasNoEstimate) {
   EXPECT_FALSE(controller.estimate().has_value());
 }
 
+TEST(PredictiveControllerTest, AnAxisTheFrameDidNotMeasureCoastsOnItsForecast) {
+  // Both axes swing; the servos stay at 0, so each frame shows the whole swing. Then one frame
+  // is sure along X only (its Y is NaN): Y is aimed at its forecast, not held.
+  PredictiveController controller(NoDeadBand(), {0.1, 0.1}, Lead(2));
+  const auto swing = [](int t) { return NumericLoop::Swing(t); };
+  for (int t = 0; t < 120; ++t) {
+    ControlInput input = Measured(-swing(t));
+    input.displacement_px.y = -swing(t);
+    controller.Update(input, {0, 0});
+  }
+  ControlInput x_only = Measured(-swing(120));
+  x_only.displacement_px.y = std::numeric_limits<double>::quiet_NaN();
+  const ServoTargets target = controller.Update(x_only, {0, 0});
+  EXPECT_TRUE(controller.predicting_tilt());
+  // Cancelling the swing two frames ahead: −swing(122) px through 0.1 deg/px.
+  EXPECT_NEAR(target.tilt_deg, -swing(122) * 0.1, 0.3);
+}
+
 }  // namespace
 }  // namespace kapfix
 

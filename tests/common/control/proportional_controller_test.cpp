@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -99,6 +100,14 @@ TEST(ProportionalControllerTest, RejectsNegativeGainsAndAZeroCalibration) {
   gains.p = -1;
   EXPECT_THROW(ProportionalController(gains, kLens), std::invalid_argument);
   EXPECT_THROW(ProportionalController({}, LensCalibration{0, 0.1}), std::invalid_argument);
+}
+
+TEST(ProportionalControllerTest, AnAxisTheFrameDidNotMeasureHoldsWhileTheOtherIsCorrected) {
+  ProportionalController c({}, kLens);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const ServoTargets t = c.Update(Measured(10, nan), {1.0, 2.0});
+  EXPECT_DOUBLE_EQ(t.pan_deg, 1.0 + 10 * 0.1);
+  EXPECT_DOUBLE_EQ(t.tilt_deg, 2.0);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/image/color_channel.hpp"
 #include "tests/support/test_images.hpp"
 
@@ -120,6 +122,42 @@ TEST(SearchStrategyTest, ConfidenceIsHighOnATextureAndLowOnAFlatPatch) {
   const SearchResult ambiguous = Make("all")->Search(ReferencePatch(flat, set), flat, {});
   EXPECT_GT(sharp.confidence, 0.5);
   EXPECT_LT(ambiguous.confidence, 0.05);
+}
+
+TEST(SearchStrategyTest, EachAxisSaysHowSurelyThePatchIsPlacedAlongIt) {
+  // Vertical stripes: one textured row repeated down the image. Across them (X) the patch has
+  // one place; along them (Y) every shift fits as well (the aperture problem).
+  const cv::Mat texture = testing::SmoothTexture({300, 300}, 37, 4.0);
+  cv::Mat stripes;
+  cv::repeat(texture.row(150), 300, 1, stripes);
+  const SampleSet set({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll});
+  SearchOptions options;
+  options.axis = SearchAxis::kBoth;
+  options.range = 20;
+  for (const std::string name : {"all", "h23", "pyr"}) {
+    const SearchResult r = Make(name)->Search(ReferencePatch(stripes, set),
+                                              testing::Translated(stripes, 6, 4), options);
+    ASSERT_TRUE(r.found) << name;
+    EXPECT_EQ(r.shift.x, 6) << name;
+    EXPECT_GT(r.confidence_x, 0.3) << name;  // above the loop's trust threshold (0.2)
+    EXPECT_LT(r.confidence_y, 0.05) << name;
+    EXPECT_EQ(r.confidence, std::min(r.confidence_x, r.confidence_y)) << name;
+    const SearchResult textured = Make(name)->Search(ReferencePatch(texture, set),
+                                                     testing::Translated(texture, 6, 4), options);
+    EXPECT_GT(textured.confidence_x, 0.5) << name;
+    EXPECT_GT(textured.confidence_y, 0.5) << name;
+  }
+}
+
+TEST(SearchStrategyTest, AnAxisNotSearchedIsSure) {
+  const cv::Mat texture = testing::SmoothTexture({300, 300}, 38, 4.0);
+  const SampleSet set({cv::Rect(100, 100, 100, 100)}, {SamplingKind::kAll});
+  for (const std::string name : {"all", "pyr"}) {
+    const SearchResult r =
+        Make(name)->Search(ReferencePatch(texture, set), testing::Translated(texture, 6, 0), {});
+    EXPECT_EQ(r.confidence_y, 1.0) << name;
+    EXPECT_EQ(r.confidence, r.confidence_x) << name;
+  }
 }
 
 TEST(SearchStrategyTest, NothingFoundWhenThePatchCannotMove) {
