@@ -159,10 +159,9 @@ void FixationLoop::UpdateLock(bool stored, Step* step) {
   // in a row) while the loop swings ±60 px between them.
   if (!confident) ++untrusted_frames_;
   if (clear_frames_ >= options_.lock_regain_frames) untrusted_frames_ = 0;
-  // Only a confirmed lock rides out a short run of untrusted frames (a blurred frame, a
-  // brightness step); one that never stood clear of its rivals is lost at the first.
-  const int grace = confirmed_ ? options_.lock_lost_frames : 1;
-  if (untrusted_frames_ >= grace) {
+  // A lock rides out a short run of untrusted frames (a blurred frame, a brightness step),
+  // claiming none of them (Step::riding_out).
+  if (untrusted_frames_ >= options_.lock_lost_frames) {
     reacquiring_ = true;
     returning_ = false;
     confirmed_ = false;

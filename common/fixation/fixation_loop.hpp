@@ -29,9 +29,9 @@ struct FixationOptions {
   int slice = 5;         // 1 = top … slice_count; SSP chooses it
   // A frame whose match confidence is below this (or that found no match) is not trusted:
   // the controller gets it as not found. After lock_lost_frames such frames in a row the
-  // lock is reported lost (the agent then re-runs SSP, SPEC §2.6); before the lock is
-  // confirmed (see lock_regain_confidence), after the first. Only lock_regain_frames clear
-  // frames in a row end such a run: single good frames between bad ones do not.
+  // lock is reported lost (the agent then re-runs SSP, SPEC §2.6), whether or not it was
+  // confirmed (see lock_regain_confidence). Only lock_regain_frames clear frames in a row end
+  // such a run: single good frames between bad ones do not.
   // MatchConfidence sees a repetitive texture's rival (issue 9): below this the match is
   // ambiguous or poor and must not steer the servos. A confirmed lock on a stored reference
   // judges each searched axis alone (SearchResult::confidence_x/y): a frame sure along one
@@ -59,8 +59,12 @@ struct FixationOptions {
   // frames in a row at or above this confidence, a margin above lock_lost_confidence
   // (hysteresis): on a repetitive texture the confidence hovers around the trust threshold
   // (building.jpg: 0.05-0.3, clean photos 0.4-0.8) and a lock made of frames that barely pass
-  // it is not one. Until the lock is confirmed there is no grace: the first untrusted frame
-  // reports the lock lost, so that a view that never really locked is never held silently.
+  // it is not one: until confirmed it steers by both axes or none (axis_trust). A lock that
+  // rides out untrusted frames claims none of its frames (Step::riding_out), so a view that
+  // never really locked is never held silently; until session 23 an unconfirmed lock was lost
+  // at its first untrusted frame instead, and a lock-on's motion blur alone made one
+  // (stuff.jpg, realistic world, seed 3: right matches at 36 px a frame, confidence 0.04,
+  // the lock back only 12 frames later with the view 113 px off).
   double lock_regain_confidence = 0.4;
   // [px] A re-acquired reference steers the servos back at once, but the lock counts as held
   // again (lock_lost false) only once the measured displacement is within this: found 60 px

@@ -113,8 +113,9 @@ TEST(FixationLoopApertureTest, ALockNotYetConfirmedNeedsBothAxes) {
   ScriptedLoop scripted(ConfirmedThen(SureAlongXOnly(), /*clear_frames=*/1));
   EXPECT_FALSE(scripted.Next().lock_lost);
   const FixationLoop::Step step = scripted.Next();
-  EXPECT_TRUE(step.lock_lost);
   EXPECT_FALSE(step.trusted);
+  EXPECT_FALSE(step.partial);
+  EXPECT_DOUBLE_EQ(step.targets.pan_deg, 1.0);  // neither axis steered
 }
 
 TEST(FixationLoopApertureTest, AFrameUnsureOnBothAxesStillCountsTowardsALostLock) {

@@ -281,33 +281,46 @@ TEST(FixationLoopTest, GoodFramesBetweenUntrustedOnesDoNotKeepTheLock) {
   EXPECT_TRUE(lost);
 }
 
-TEST(FixationLoopTest, ALockNotYetConfirmedIsLostAtTheFirstUntrustedFrame) {
+// A lock-on's first frames may be blurred by a fast swing (stuff.jpg, realistic world, seed
+// 3: confidence 0.04 on frame 2 with the match right): a lock not yet confirmed rides them out
+// like a confirmed one, claiming none of them, and is lost at the run's end.
+TEST(FixationLoopTest, ALockNotYetConfirmedRidesOutUntrustedFramesClaimingNone) {
   FixationOptions o = Options();
   o.lock_lost_frames = 5;
   FixationLoop loop(o, Pyr(), PlainP(), kLens);
   loop.SetReference(Texture());
   const cv::Mat blank(300, 300, CV_8UC3, cv::Scalar::all(128));
+  for (int k = 1; k < o.lock_lost_frames; ++k) {
+    const FixationLoop::Step step = loop.Process(blank, {}, 0.04);
+    EXPECT_FALSE(step.lock_lost) << "untrusted frame " << k;
+    EXPECT_FALSE(step.trusted);
+    EXPECT_TRUE(step.off_target);
+  }
   EXPECT_TRUE(loop.Process(blank, {}, 0.04).lock_lost);
 }
 
 // building.jpg: rows of identical windows, the silent wrong lock (5.6 % of a nominal
 // flight's frames grossly off with lock_lost false). Its matches hover around the trust
 // threshold (0.05-0.3), right or one window off: such a lock is never confirmed, so the loop
-// says at once that it does not hold the view, and keeps saying so.
+// claims none of its frames but the first, says the lock is lost once it has ridden out
+// lock_lost_frames untrusted ones, and keeps saying so.
 TEST(FixationLoopTest, ARepetitivePhotosLockIsReportedLostNotSilentlyHeld) {
   const cv::Mat scene = testing::LoadOpenCvPhoto("building.jpg");
   const cv::Rect window((scene.cols - 300) / 2, (scene.rows - 300) / 2, 300, 300);
   FixationLoop loop(Options(), Pyr(), PlainP(), kLens);
   loop.SetReference(scene(window).clone());
   int lost = 0;
+  int claimed = 0;
   int frames = 0;
   for (int dx = -40; dx <= 40; dx += 8) {
     const cv::Mat frame = scene(window + cv::Point(dx, 3)).clone();
     const FixationLoop::Step step = loop.Process(frame, {}, 0.04);
     lost += step.lock_lost ? 1 : 0;
+    claimed += step.off_target ? 0 : 1;
     ++frames;
   }
-  EXPECT_GE(lost, frames - 1) << "the first frame may still pass";
+  EXPECT_LE(claimed, 1) << "the first frame may still pass";
+  EXPECT_GE(lost, frames - loop.options().lock_lost_frames);
 }
 
 // The other side: clean photos keep their lock over the same moves (no false lock loss).
