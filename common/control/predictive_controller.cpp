@@ -195,15 +195,18 @@ ServoTargets PredictiveController::Coast(const ControlInput& input, const ServoT
   // Bridge a short gap with the forecast; hold once the models give up.
   ServoTargets target = current;
   if (pan_coasts) {
-    target.pan_deg = *pan_.Forecast(options_.predictor.lead_frames) * calibration_.pan_deg_per_px;
+    target.pan_deg = CoastedDeg(pan_, calibration_.pan_deg_per_px);
     predicting_pan_ = true;
   }
   if (tilt_coasts) {
-    target.tilt_deg =
-        *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
+    target.tilt_deg = CoastedDeg(tilt_, calibration_.tilt_deg_per_px);
     predicting_tilt_ = true;
   }
   return rate_limiter_.Limit(gains_, target, current, input.dt_s);
+}
+
+double PredictiveController::CoastedDeg(const SwingPredictor& predictor, double deg_per_px) const {
+  return *predictor.Forecast(options_.predictor.lead_frames) * deg_per_px;
 }
 
 void PredictiveController::GradeForecast(const SwingPredictor& predictor, AxisTrust* trust,
@@ -306,7 +309,7 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     target.pan_deg = AimAxis(pan_, pan_trust_, current.pan_deg, calibration_.pan_deg_per_px,
                              proportional.pan_deg, &predicting_pan_);
   } else if (pan_coasts) {
-    target.pan_deg = *pan_.Forecast(options_.predictor.lead_frames) * calibration_.pan_deg_per_px;
+    target.pan_deg = CoastedDeg(pan_, calibration_.pan_deg_per_px);
     predicting_pan_ = true;
   }
   if (tilt_measured) {
@@ -314,8 +317,7 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
     target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
                               proportional.tilt_deg, &predicting_tilt_);
   } else if (tilt_coasts) {
-    target.tilt_deg =
-        *tilt_.Forecast(options_.predictor.lead_frames) * calibration_.tilt_deg_per_px;
+    target.tilt_deg = CoastedDeg(tilt_, calibration_.tilt_deg_per_px);
     predicting_tilt_ = true;
   }
   return rate_limiter_.Limit(gains_, target, current, input.dt_s);

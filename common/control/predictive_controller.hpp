@@ -129,6 +129,9 @@ class PredictiveController final : public Controller {
   // No measurement this frame: bridge with the forecast, then hold; or head for
   // input.return_to (a lost lock).
   ServoTargets Coast(const ControlInput& input, const ServoTargets& current);
+  // [deg] the angle that cancels `predictor`'s forecast lead_frames ahead: an axis bridged
+  // without a measurement (the predictor coasts, so it has a forecast).
+  double CoastedDeg(const SwingPredictor& predictor, double deg_per_px) const;
   // Moves an axis's trust in its forecast against P by the residual the camera shows.
   void GradeForecast(const SwingPredictor& predictor, AxisTrust* trust, double measured_px);
   // The axis's target [deg]: the forecast and P's target blended by the trust.

@@ -179,6 +179,7 @@ void FixationLoop::UpdateLock(bool stored, Step* step) {
   step->trusted = confident && !reacquiring_;
   step->trusted_x = step->trusted && search_x && (full || sure_x);
   step->trusted_y = step->trusted && search_y && (full || sure_y);
+  step->partial = partial;
   // The next search is centred on what this frame placed surely; an unsure axis stays put.
   if (full) {
     origin_ = match.shift;
@@ -297,9 +298,7 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
       OnSearchedAxes(step.trusted ? step.match.displacement : cv::Point2d(0, 0));
   // Both searched axes steered (as every trusted frame of follow, and a stored reference's
   // frame sure along both).
-  const bool search_x = options_.search.axis != SearchAxis::kY;
-  const bool search_y = options_.search.axis != SearchAxis::kX;
-  const bool whole = step.trusted && (step.trusted_x || !search_x) && (step.trusted_y || !search_y);
+  const bool whole = step.trusted && !step.partial;
 
   // A lock riding out untrusted frames (its grace, until lock_regain_frames clear frames in a
   // row) still steers by the trusted frames between them, but is not vouched for: those
@@ -320,12 +319,11 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
 
   ControlInput input;
   input.confidence = step.match.confidence;
-  step.partial = step.trusted && !whole;
   if (step.partial) {
     // The unsure axis is not measured (NaN): the controller coasts or holds it.
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (search_x && !step.trusted_x) displacement.x = nan;
-    if (search_y && !step.trusted_y) displacement.y = nan;
+    if (!step.trusted_x) displacement.x = nan;
+    if (!step.trusted_y) displacement.y = nan;
     input.confidence = step.trusted_x ? step.match.confidence_x : step.match.confidence_y;
   }
   input.displacement_px = displacement;
