@@ -135,8 +135,6 @@ std::unique_ptr<ServoDriver> MakeServoBackend(const ServoConfig& servo) {
 AgentConfig BuiltInConfig(MotionKind motion) {
   AgentConfig config;
   config.simulation.motion = motion;
-  config.search.axis = motion == MotionKind::kBoat ? SearchAxis::kY : SearchAxis::kBoth;
-  config.gains.set_p(1.0F);
   // A simulated flight from a user's shell: photos next to it, not in the service's folder.
   config.photos.dir = "kapfix-photos";
   config.state_dir = "kapfix-state";

@@ -204,6 +204,8 @@ class FixationLoop {
   void StoreExposure(const cv::Mat& plane);
   // Whether the view is held at the patch's measured `displacement` [px] (stored reference):
   // within off_target_px, the roll allowed for (roll_aware_claim); sets step->roll_deg.
+  // `displacement` is the match's on both axes: a single-axis search's reading across it
+  // (pyr's cross range) is no measurement to steer by, but it can show a view not held.
   bool HoldsView(const cv::Mat& plane, const cv::Point2d& displacement, Step* step) const;
   // [px] `displacement` with the axis that is not searched set to 0.
   cv::Point2d OnSearchedAxes(cv::Point2d displacement) const;

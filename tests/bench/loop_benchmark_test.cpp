@@ -98,7 +98,7 @@ TEST(LoopBenchmarkTest, ConfigFliesThatConfigurationsLoop) {
   const ProcessOutcome outcome = RunLoopBench(
       dir.path(), "--dry-run --out out --config " KAPFIX_SOURCE_DIR "/resources/kite.json");
   ASSERT_EQ(outcome.exit_code, 0) << ReadFile(dir.path() / "stderr.txt");
-  EXPECT_NE(outcome.out.find("p 0.8, i 0, d 0, dead_band_px 0.5, rate_limit_deg_per_s 120"),
+  EXPECT_NE(outcome.out.find("p 1, i 0, d 0, dead_band_px 0.5, rate_limit_deg_per_s 120"),
             std::string::npos)
       << outcome.out;
   EXPECT_NE(outcome.out.find("60 frames/s; servos 2.5 deg/frame"), std::string::npos)

@@ -376,6 +376,25 @@ TEST(FixationLoopTest, AViewMeasuredBeyondTheOffTargetDistanceIsSaidOffTarget) {
   EXPECT_TRUE(far.off_target) << "but 20 px off is not a held view";
 }
 
+// A kite's configuration searches X alone; pyr still reads the view across it (its cross
+// range). That reading steers nothing, but a view it shows 11 px off in Y is not held: an
+// X-only loop claimed such views (realistic world, 24 % of the frames grossly off, claimed).
+TEST(FixationLoopTest, AViewReadOffAcrossASingleAxisSearchIsSaidOffTarget) {
+  FixationOptions o = Options(SearchAxis::kX);
+  o.off_target_px = 8;
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference);
+  const FixationLoop::Step near = loop.Process(testing::Translated(reference, 2, 3), {}, 0.04);
+  ASSERT_TRUE(near.trusted);
+  EXPECT_FALSE(near.off_target);
+  const FixationLoop::Step far = loop.Process(testing::Translated(reference, 2, 11), {}, 0.04);
+  ASSERT_TRUE(far.trusted);
+  ASSERT_NEAR(far.match.displacement.y, 11, 1) << "pyr reads the view across its X search";
+  EXPECT_DOUBLE_EQ(far.targets.tilt_deg, 0.0) << "Y is not steered";
+  EXPECT_TRUE(far.off_target) << "but 11 px off in Y is not a held view";
+}
+
 // aero1.jpg seen through a 640×480 frame, rolled by `roll_deg` and shifted by `shift_x` [px].
 cv::Mat RolledView(double roll_deg, double shift_x) {
   return testing::RolledView("aero1.jpg", {640, 480}, roll_deg, {shift_x, 0});
