@@ -252,6 +252,9 @@ PipelineOptions Agent::OpenDevices(PredictiveOptions* predictive_out) {
     const SimulatedPlatformOptions platform_options = MakePlatformOptions(config_);
     if (!platform_options.IsValid(&error)) throw std::runtime_error("simulation: " + error);
     platform_ = std::make_shared<SimulatedPlatform>(scene, platform_options);
+    if (const std::optional<std::string> note = SimulatedWorldScaleNote(config_)) {
+      spdlog::warn("simulation: {}", *note);
+    }
     if (platform_->upscale_factor() > 1.0) {
       spdlog::info("scene upscaled {:.2f}x to cover the frame and the swing",
                    platform_->upscale_factor());

@@ -103,15 +103,15 @@ bool SelectWorlds(const std::vector<std::string>& only, std::vector<LoopWorld>* 
 
 // The loop kapfix-agent flies: with --config's configuration, else its built-in one (a kite);
 // false and the configuration's error.
-bool ReadAgentLoop(const std::string& config_path, ClosedLoopOptions* agent_loop,
-                   std::string* error) {
+bool ReadAgentLoop(const std::string& config_path, LoopPlan* plan, std::string* error) {
   agent::AgentConfig config = agent::BuiltInConfig(agent::MotionKind::kKite);
   if (!config_path.empty()) {
     if (!agent::LoadAgentConfig(config_path, &config, error) || !config.IsValid(error)) {
       return false;
     }
   }
-  *agent_loop = agent::MakeClosedLoopOptions(config);
+  plan->agent_loop = agent::MakeClosedLoopOptions(config);
+  plan->world_scale_note = agent::SimulatedWorldScaleNote(config).value_or("");
   return true;
 }
 
@@ -227,7 +227,7 @@ int Main(int argc, char** argv) {
   LoopPlan plan = MakePlan(c);
   std::string error;
   if (!SelectWorlds(c.only_worlds, &plan.worlds, &error) ||
-      !ReadAgentLoop(c.config_path, &plan.agent_loop, &error) || !plan.IsValid(&error)) {
+      !ReadAgentLoop(c.config_path, &plan, &error) || !plan.IsValid(&error)) {
     std::fprintf(stderr, "kapfix-bench-loop: %s\n", error.c_str());
     return 2;
   }

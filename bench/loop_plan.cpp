@@ -173,7 +173,9 @@ std::string LoopPlan::DescribeAgentLoop() const {
                 a.controller.c_str(), gains.c_str(), 1.0 / a.frame_period_s,
                 a.platform.pan.rate_limit_deg_per_frame, a.strategy.c_str(), a.fixation.patch_size,
                 a.ssp_frames);
-  return line;
+  std::string text = line;
+  if (!world_scale_note.empty()) text += "note: " + world_scale_note + "\n";
+  return text;
 }
 
 std::string LoopPlan::Describe(int jobs, int cores) const {

@@ -52,6 +52,9 @@ struct LoopPlan {
   // The loop kapfix-agent --sim flies with its configuration (agent::MakeClosedLoopOptions):
   // servo speed, gains and their rate limit, search, frame period. Every flight starts from it.
   ClosedLoopOptions agent_loop;
+  // Non-empty when the configuration's camera sees the simulated world at another scale than
+  // the built-in's (agent::SimulatedWorldScaleNote): printed under the loop's line.
+  std::string world_scale_note;
 
   bool IsValid(std::string* error) const;
 

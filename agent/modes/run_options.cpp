@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "agent/config/options_from_settings.hpp"
 #include "common/shutter/best_phase_shutter.hpp"
@@ -102,6 +103,24 @@ SimulatedPlatformOptions MakePlatformOptions(const AgentConfig& config) {
   o.pan.rate_limit_deg_per_frame = config.servo.pan.limits.max_rate_deg_per_s / config.camera.fps;
   o.tilt.rate_limit_deg_per_frame = config.servo.tilt.limits.max_rate_deg_per_s / config.camera.fps;
   return o;
+}
+
+std::optional<std::string> SimulatedWorldScaleNote(const AgentConfig& config) {
+  const AgentConfig built_in;
+  // [1] how much faster (in seconds) and wider (in degrees) this camera sees the world's swing
+  const double faster = config.camera.fps / built_in.camera.fps;
+  const double wider = config.active_lens().DegPerPxPan() / built_in.active_lens().DegPerPxPan();
+  constexpr double kSame = 0.02;  // [1] closer than this is the same camera
+  if (std::abs(faster - 1) < kSame && std::abs(wider - 1) < kSame) return std::nullopt;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "the simulated swing is defined in frames and pixels for %g frames/s and %g "
+                "deg/px; at this configuration's %g frames/s and %.3g deg/px it is %.2g× as fast "
+                "and %.2g× as wide in angle, so its figures do not compare with the built-in "
+                "configuration's",
+                built_in.camera.fps, built_in.active_lens().DegPerPxPan(), config.camera.fps,
+                config.active_lens().DegPerPxPan(), faster, wider);
+  return std::string(line);
 }
 
 ClosedLoopOptions MakeClosedLoopOptions(const AgentConfig& config) {

@@ -103,6 +103,9 @@ TEST(LoopBenchmarkTest, ConfigFliesThatConfigurationsLoop) {
       << outcome.out;
   EXPECT_NE(outcome.out.find("60 frames/s; servos 2.5 deg/frame"), std::string::npos)
       << outcome.out;
+  EXPECT_NE(outcome.out.find("note: the simulated swing is defined in frames and pixels"),
+            std::string::npos)
+      << outcome.out;
 }
 
 TEST(LoopBenchmarkTest, ABadConfigIsRefusedNamingTheField) {

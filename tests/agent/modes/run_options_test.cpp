@@ -42,6 +42,18 @@ TEST(MakeClosedLoopOptionsTest, AConfigurationWithoutSettingsFliesTheBuiltInLoop
   EXPECT_DOUBLE_EQ(file.frame_period_s, built_in.frame_period_s);
 }
 
+TEST(SimulatedWorldScaleNoteTest, TheBuiltInCameraNeedsNoNote) {
+  EXPECT_EQ(SimulatedWorldScaleNote(BuiltInConfig(MotionKind::kKite)), std::nullopt);
+}
+
+TEST(SimulatedWorldScaleNoteTest, ACameraTwiceAsFastIsToldItsSwingIsTwiceAsFast) {
+  AgentConfig config = BuiltInConfig(MotionKind::kKite);
+  config.camera.fps = 60;
+  const std::optional<std::string> note = SimulatedWorldScaleNote(config);
+  ASSERT_TRUE(note);
+  EXPECT_NE(note->find("2× as fast and 1× as wide"), std::string::npos) << *note;
+}
+
 TEST(MakeClosedLoopOptionsTest, CarriesTheSearchAndTheFreeSwingsFirstDeadline) {
   AgentConfig config = BuiltInConfig(MotionKind::kKite);
   config.search.patch_px = 60;
