@@ -42,6 +42,15 @@ TEST(MakeClosedLoopOptionsTest, AConfigurationWithoutSettingsFliesTheBuiltInLoop
   EXPECT_DOUBLE_EQ(file.frame_period_s, built_in.frame_period_s);
 }
 
+// A boat's X is white jitter that a delayed loop can only add to: its built-in loop searches
+// Y alone, a kite's both.
+TEST(MakeClosedLoopOptionsTest, ABoatsBuiltInLoopSearchesYAloneAKitesBoth) {
+  EXPECT_EQ(MakeClosedLoopOptions(BuiltInConfig(MotionKind::kBoat)).fixation.search.axis,
+            SearchAxis::kY);
+  EXPECT_EQ(MakeClosedLoopOptions(BuiltInConfig(MotionKind::kKite)).fixation.search.axis,
+            SearchAxis::kBoth);
+}
+
 TEST(SimulatedWorldScaleNoteTest, TheBuiltInCameraNeedsNoNote) {
   EXPECT_EQ(SimulatedWorldScaleNote(BuiltInConfig(MotionKind::kKite)), std::nullopt);
 }
