@@ -303,24 +303,30 @@ ServoTargets PredictiveController::Update(const ControlInput& input, const Servo
   measured.displacement_px = {dx, dy};
   const ServoTargets proportional = fallback_.Update(measured, current);
 
-  ServoTargets target = current;
-  if (pan_measured) {
-    GradeForecast(pan_, &pan_trust_, dx);
-    target.pan_deg = AimAxis(pan_, pan_trust_, current.pan_deg, calibration_.pan_deg_per_px,
-                             proportional.pan_deg, &predicting_pan_);
-  } else if (pan_coasts) {
-    target.pan_deg = CoastedDeg(pan_, calibration_.pan_deg_per_px);
-    predicting_pan_ = true;
-  }
-  if (tilt_measured) {
-    GradeForecast(tilt_, &tilt_trust_, dy);
-    target.tilt_deg = AimAxis(tilt_, tilt_trust_, current.tilt_deg, calibration_.tilt_deg_per_px,
-                              proportional.tilt_deg, &predicting_tilt_);
-  } else if (tilt_coasts) {
-    target.tilt_deg = CoastedDeg(tilt_, calibration_.tilt_deg_per_px);
-    predicting_tilt_ = true;
-  }
+  ServoTargets target;
+  target.pan_deg = SteerAxis(pan_, &pan_trust_,
+                             {pan_measured, pan_coasts, dx, current.pan_deg,
+                              calibration_.pan_deg_per_px, proportional.pan_deg},
+                             &predicting_pan_);
+  target.tilt_deg = SteerAxis(tilt_, &tilt_trust_,
+                              {tilt_measured, tilt_coasts, dy, current.tilt_deg,
+                               calibration_.tilt_deg_per_px, proportional.tilt_deg},
+                              &predicting_tilt_);
   return rate_limiter_.Limit(gains_, target, current, input.dt_s);
+}
+
+double PredictiveController::SteerAxis(const SwingPredictor& predictor, AxisTrust* trust,
+                                       const AxisFrame& frame, bool* predicting) {
+  if (frame.measured) {
+    GradeForecast(predictor, trust, frame.measured_px);
+    return AimAxis(predictor, *trust, frame.current_deg, frame.deg_per_px, frame.proportional_deg,
+                   predicting);
+  }
+  if (frame.coasts) {
+    *predicting = true;
+    return CoastedDeg(predictor, frame.deg_per_px);
+  }
+  return frame.current_deg;
 }
 
 }  // namespace kapfix

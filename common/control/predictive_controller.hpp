@@ -134,6 +134,19 @@ class PredictiveController final : public Controller {
   double CoastedDeg(const SwingPredictor& predictor, double deg_per_px) const;
   // Moves an axis's trust in its forecast against P by the residual the camera shows.
   void GradeForecast(const SwingPredictor& predictor, AxisTrust* trust, double measured_px);
+  // One axis of this frame, as Update sees it.
+  struct AxisFrame {
+    bool measured = false;        // the frame measured this axis
+    bool coasts = false;          // not measured, and the predictor bridges it
+    double measured_px = 0;       // [px] the measurement (when measured)
+    double current_deg = 0;       // [deg] the servo's angle the frame was seen through
+    double deg_per_px = 0;        // [deg/px] the calibration acted on
+    double proportional_deg = 0;  // [deg] P's target, the forecast's fallback
+  };
+  // The axis's target [deg]: aimed when measured (its forecast graded first), coasted on the
+  // forecast when bridged, held otherwise.
+  double SteerAxis(const SwingPredictor& predictor, AxisTrust* trust, const AxisFrame& frame,
+                   bool* predicting);
   // The axis's target [deg]: the forecast and P's target blended by the trust.
   double AimAxis(const SwingPredictor& predictor, const AxisTrust& trust, double current_deg,
                  double deg_per_px, double fallback_deg, bool* predicting) const;
