@@ -9,7 +9,8 @@ set -euo pipefail
 
 runtime_packages=(
   # libraries kapfix-agent links (Debian 12 names), and what its package scripts use
-  libopencv-core406 libopencv-imgproc406 libopencv-imgcodecs406 libopencv-videoio406
+  libopencv-core406 libopencv-imgproc406 libopencv-imgcodecs406 libopencv-video406
+  libopencv-videoio406
   libzmq5 libprotobuf32 libsodium23 libspdlog1.10 libfmt9
   libaravis-0.8-0 libusb-1.0-0 libsystemd0
   # a USB still camera for photos (issue 13)

@@ -15,6 +15,14 @@ namespace {
 // [px] kept between a widened search window and the frame's edge (the pyramid's blur).
 constexpr int kReacquireMarginPx = 8;
 
+// Follow compares consecutive frames, between which the camera barely rolls: it replaces its
+// reference every frame and tracks no roll.
+RollTrackingOptions RollTracking(const FixationOptions& options) {
+  RollTrackingOptions tracking = options.roll_tracking;
+  tracking.enabled = tracking.enabled && options.reference == FixationOptions::Reference::kStored;
+  return tracking;
+}
+
 }  // namespace
 
 bool FixationOptions::IsValid(std::string* error) const {
@@ -58,7 +66,7 @@ bool FixationOptions::IsValid(std::string* error) const {
   if (!std::isfinite(follow_decay_frames) || follow_decay_frames <= 0) {
     return fail("follow decay must be > 0 frames, got " + std::to_string(follow_decay_frames));
   }
-  return roll.IsValid(error);
+  return roll.IsValid(error) && roll_tracking.IsValid(error);
 }
 
 FixationLoop::FixationLoop(FixationOptions options, std::shared_ptr<const SearchStrategy> strategy,
@@ -66,6 +74,7 @@ FixationLoop::FixationLoop(FixationOptions options, std::shared_ptr<const Search
     : options_(options),
       strategy_(std::move(strategy)),
       controller_(std::move(controller)),
+      reference_(RollTracking(options_)),
       origin_(options_.search.origin) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument("FixationLoop: " + error);
@@ -96,7 +105,7 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr,
   const cv::Rect patch =
       SlicePatch(plane.size(), options_.slice_count, options_.slice, options_.patch_size);
   samples_ = SampleSet({patch}, options_.sampling);
-  reference_.emplace(plane, samples_);
+  reference_.Reset(plane, patch, samples_);
   centre_samples_.clear();
   centre_sum_ = {};
   if (seen_through) {
@@ -201,12 +210,16 @@ bool FixationLoop::HoldsView(const cv::Mat& plane, const cv::Point2d& displaceme
   // [px] the patch centre from the frame centre, and the most a roll in range moves it
   const cv::Point2d offset(patch_.x + 0.5 * (patch_.width - 1) - 0.5 * (plane.cols - 1),
                            patch_.y + 0.5 * (patch_.height - 1) - 0.5 * (plane.rows - 1));
+  // The claim's read is centred on the roll the reference is turned by (0 without one).
+  PatchRollOptions roll_options = options_.roll;
+  roll_options.centre_deg = reference_.turn_deg();
+  const double reach_deg = std::min(90.0, std::abs(roll_options.centre_deg) + roll_options.max_deg);
   const double reach =
-      std::hypot(offset.x, offset.y) * std::sin(options_.roll.max_deg * std::numbers::pi / 180);
+      std::hypot(offset.x, offset.y) * std::sin(reach_deg * std::numbers::pi / 180);
   // No roll in range could carry the centre beyond the line: the patch decides.
   if (options_.off_target_px - patch_px >= reach) return true;
-  const std::optional<PatchRoll> roll =
-      ReadPatchRoll(reference_->image(), patch_, plane, step->match.displacement, options_.roll);
+  const std::optional<PatchRoll> roll = ReadPatchRoll(reference_.stored().image(), patch_, plane,
+                                                      step->match.displacement, roll_options);
   // A roll in range could carry the centre across the line and none could be read (the
   // patch too near the frame's edge, or its refinement strays from the search's answer): the
   // loop cannot vouch for the centre, so it does not claim it (building.jpg after SSP: claimed
@@ -254,17 +267,17 @@ cv::Point2d FixationLoop::FollowStep(const cv::Mat& plane, const cv::Point2d& fr
   // the leak lets the reference follow the boat's slow course instead.
   const double keep = std::exp(-1.0 / options_.follow_decay_frames);
   follow_sum_ = follow_sum_ * keep + frame_step;
-  reference_.emplace(plane, samples_);
+  reference_.Reset(plane, patch_, samples_);
   StoreExposure(plane);
   origin_ = options_.search.origin;  // the next step is measured against this frame
   return follow_sum_;
 }
 
 std::optional<cv::Point2d> FixationLoop::Locate(const cv::Mat& frame_bgr) const {
-  if (!reference_) return std::nullopt;
+  if (!reference_.has_reference()) return std::nullopt;
   cv::Mat plane = Plane(frame_bgr);
   exposure_.ApplyInPlace(&plane);
-  const SearchResult match = strategy_->Search(*reference_, plane, options_.search);
+  const SearchResult match = strategy_->Search(reference_.reference(), plane, options_.search);
   if (!match.found || match.confidence < options_.lock_regain_confidence) return std::nullopt;
   return OnSearchedAxes(match.displacement);
 }
@@ -279,7 +292,7 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     return step;
   };
-  if (!reference_) {
+  if (!reference_.has_reference()) {
     step.lock_lost = true;
     return finish();
   }
@@ -288,8 +301,14 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   step.exposure_gain = exposure_.ApplyInPlace(&plane);
   const bool stored = options_.reference == FixationOptions::Reference::kStored;
   const SearchOptions search = SearchWindow(plane.size(), stored, &step);
-  step.match = strategy_->Search(*reference_, plane, search);
+  step.match = strategy_->Search(reference_.reference(), plane, search);
   UpdateLock(stored, &step);
+  // The roll is read on every frame matched with confidence against the stored reference, the
+  // lock's state aside: a lock lost while the camera rolled must find the view turned.
+  if (stored && step.match.found && step.match.confidence >= options_.lock_lost_confidence &&
+      reference_.Track(plane, step.match.displacement)) {
+    step.tracked_roll_deg = reference_.estimate_deg();
+  }
 
   // Only the searched axes are measured: the other one's value is the search's by-product
   // (its origin, or pyr's coarse cross-axis tolerance), not a measurement to steer by.

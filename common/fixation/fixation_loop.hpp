@@ -10,6 +10,7 @@
 #include "common/control/controller.hpp"
 #include "common/control/lens_calibration.hpp"
 #include "common/fixation/patch_roll.hpp"
+#include "common/fixation/rolling_reference.hpp"
 #include "common/image/color_channel.hpp"
 #include "common/matching/exposure_compensation.hpp"
 #include "common/matching/reference_patch.hpp"
@@ -87,6 +88,9 @@ struct FixationOptions {
   // displacement alone.
   bool roll_aware_claim = true;
   PatchRollOptions roll;
+  // The stored reference turned by the roll read while flying (RollingReference): the search
+  // compares each frame with the reference as the rolled camera sees it.
+  RollTrackingOptions roll_tracking;
   // Scale each frame to the stored reference's mean brightness before the search
   // (ExposureCompensation): an auto-exposure step between the reference and the frame
   // otherwise pulls the SSD minimum off the view while the match stays confident.
@@ -139,7 +143,7 @@ class FixationLoop {
   // outside the flight, such as the one before the reference (how fast the view was moving
   // when it was taken).
   std::optional<cv::Point2d> Locate(const cv::Mat& frame_bgr) const;
-  bool has_reference() const { return reference_.has_value(); }
+  bool has_reference() const { return reference_.has_reference(); }
   // Centres the next search on `shift` [px] instead of search.origin: the reference's view was
   // found there by a wider search (an agent resuming after a restart, issue 14). With
   // track_origin the searches then follow the view from there.
@@ -172,6 +176,9 @@ class FixationLoop {
     // [deg] the roll read from the patch for the claim above; NaN when it was not needed
     // (the patch's displacement alone decided) or could not be read.
     double roll_deg = std::numeric_limits<double>::quiet_NaN();
+    // [deg] the roll tracked since the reference (RollingReference::estimate_deg) after this
+    // frame's read; NaN when it was not read (no confident match, or tracking off).
+    double tracked_roll_deg = std::numeric_limits<double>::quiet_NaN();
     double exposure_gain = 1;  // [1] the factor the frame was scaled by before the search
     double loop_us = 0;        // [µs] wall time of this Process call
     // What the controller believes after this frame (online deg/px, forecast weight), for
@@ -221,7 +228,7 @@ class FixationLoop {
   std::unique_ptr<Controller> controller_;
   SampleSet samples_;
   cv::Rect patch_;
-  std::optional<ReferencePatch> reference_;
+  RollingReference reference_;
   LensCalibration calibration_;
   // [deg] the angles that would have centred the view, per trusted frame (and the reference
   // frame's angles first), and their sum: the lost lock's return point is their mean.

@@ -49,14 +49,8 @@ class RollFit {
   bool usable() const { return inside_.width >= 4 && inside_.height >= 4; }
 
   cv::Mat Turned(double deg) const {
-    const cv::Point2f centre(0.5F * static_cast<float>(reference_.cols - 1),
-                             0.5F * static_cast<float>(reference_.rows - 1));
-    // getRotationMatrix2D turns counter-clockwise on the screen for a positive angle (y down):
-    // content from +x towards −y. Ours is +x towards +y, hence −deg.
-    cv::Mat turned;
-    cv::warpAffine(reference_, turned, cv::getRotationMatrix2D(centre, -deg, 1.0),
-                   reference_.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-    return turned;
+    return TurnedPlane(reference_,
+                       cv::Point2d(0.5 * (reference_.cols - 1), 0.5 * (reference_.rows - 1)), deg);
   }
 
   cv::Mat Seen(const cv::Point2d& displacement) const {
@@ -116,6 +110,7 @@ bool PatchRollOptions::IsValid(std::string* error) const {
     return false;
   };
   if (!(max_deg > 0 && max_deg <= 45)) return fail("roll range must be in (0, 45] deg");
+  if (!(std::abs(centre_deg) <= 45)) return fail("roll centre must be in [-45, 45] deg");
   if (!(step_deg > 0 && step_deg <= max_deg)) return fail("roll step must be in (0, max] deg");
   if (margin_px < 0) return fail("roll margin must be ≥ 0 px");
   if (reduce < 1 || reduce > 8) return fail("roll reduction must be 1…8");
@@ -164,8 +159,8 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
 
   const int steps = static_cast<int>(std::floor(options.max_deg / options.step_deg));
   PatchRoll read{0, displacement};
-  double deg = BestAngle(fit, fit.Seen(displacement), -steps * options.step_deg, options.step_deg,
-                         2 * steps + 1);
+  double deg = BestAngle(fit, fit.Seen(displacement), options.centre_deg - steps * options.step_deg,
+                         options.step_deg, 2 * steps + 1);
   constexpr int kPasses = 3;  // angle and displacement in turn; each pass halves the step
   double step = options.step_deg;
   for (int pass = 0; pass < kPasses; ++pass) {
@@ -186,6 +181,23 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
   }
   read.roll_rad = deg * kRadPerDeg;
   return read;
+}
+
+cv::Mat TurnedPlane(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg) {
+  return TurnedWindow(plane, centre, roll_deg, cv::Rect(0, 0, plane.cols, plane.rows));
+}
+
+cv::Mat TurnedWindow(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg,
+                     const cv::Rect& window) {
+  // getRotationMatrix2D turns counter-clockwise on the screen for a positive angle (y down):
+  // content from +x towards −y. Ours is +x towards +y, hence −roll_deg.
+  cv::Mat turn = cv::getRotationMatrix2D(
+      cv::Point2f(static_cast<float>(centre.x), static_cast<float>(centre.y)), -roll_deg, 1.0);
+  turn.at<double>(0, 2) -= window.x;
+  turn.at<double>(1, 2) -= window.y;
+  cv::Mat turned;
+  cv::warpAffine(plane, turned, turn, window.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return turned;
 }
 
 cv::Point2d CentreDisplacement(const cv::Point2d& displacement, double roll_rad,

@@ -13,8 +13,9 @@ namespace kapfix {
 // (realistic world, 3° at 160 px: 8 px), and a loop that judges "on target" by the patch alone
 // claims a view it does not hold.
 struct PatchRollOptions {
-  double max_deg = 6;   // [deg] the roll searched: −max_deg…+max_deg
-  double step_deg = 1;  // [deg] between the angles tried; parabolas refine the best
+  double max_deg = 6;  // [deg] the roll searched: centre_deg − max_deg … centre_deg + max_deg
+  double centre_deg = 0;  // [deg] the roll the search is centred on (a roll already tracked)
+  double step_deg = 1;    // [deg] between the angles tried; parabolas refine the best
   // [px] left out at each side of the patch: the rotated reference's corners leave it there
   int margin_px = 8;
   // The patch and frame are reduced by this factor (area average) before the fit: 2 costs
@@ -44,6 +45,14 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
                                        const cv::Mat& current_plane,
                                        const cv::Point2d& displacement,
                                        const PatchRollOptions& options);
+
+// `plane` turned by `roll_deg` [deg] about `centre` [px] (PatchRoll's sign: content from +x
+// towards +y), the same size and type, borders replicated: what a reference looks like through
+// a camera that has rolled by that much since.
+cv::Mat TurnedPlane(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg);
+// The part `window` [px] of TurnedPlane(plane, centre, roll_deg), computed alone.
+cv::Mat TurnedWindow(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg,
+                     const cv::Rect& window);
 
 // [px] Where the frame centre's content has moved, given where the patch's has (`displacement`)
 // and the roll [rad] about the centre: a roll moves content at r from the centre by

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -44,19 +45,26 @@ inline cv::Mat Translated(const cv::Mat& image, int dx, int dy) {
 
 // A `frame`-sized view of an opencv-doc photo centred on the photo's centre, its content turned
 // by `roll_deg` about the view's centre (from +x towards +y: clockwise on the screen) and then
-// shifted by `shift` [px]: a camera that rolled and moved. BGR.
+// shifted by `shift` [px]: a camera that rolled and moved. BGR. `scale`: the photo enlarged
+// about its centre first (as the simulator enlarges a photo smaller than the frame and swing).
 inline cv::Mat RolledView(const std::string& name, cv::Size frame, double roll_deg,
-                          cv::Point2d shift) {
+                          cv::Point2d shift, double scale = 1.0) {
   const cv::Mat photo = LoadOpenCvPhoto(name);
   const cv::Point2f c(0.5F * static_cast<float>(photo.cols - 1),
                       0.5F * static_cast<float>(photo.rows - 1));
-  cv::Mat move = cv::getRotationMatrix2D(c, -roll_deg, 1.0);  // OpenCV's angle: +x towards −y
-  move.at<double>(0, 2) += shift.x;
-  move.at<double>(1, 2) += shift.y;
+  // OpenCV's angle: +x towards −y
+  cv::Mat move = cv::getRotationMatrix2D(c, -roll_deg, scale);
+  // Onto a canvas at least the frame's size, the photo's centre on the canvas's centre.
+  const cv::Size canvas(std::max(photo.cols, frame.width), std::max(photo.rows, frame.height));
+  const cv::Point2f cc(0.5F * static_cast<float>(canvas.width - 1),
+                       0.5F * static_cast<float>(canvas.height - 1));
+  move.at<double>(0, 2) += shift.x + (cc.x - c.x);
+  move.at<double>(1, 2) += shift.y + (cc.y - c.y);
   cv::Mat moved;
-  cv::warpAffine(photo, moved, move, photo.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-  return moved(cv::Rect(static_cast<int>(c.x + 0.5F) - frame.width / 2,
-                        static_cast<int>(c.y + 0.5F) - frame.height / 2, frame.width, frame.height))
+  cv::warpAffine(photo, moved, move, canvas, cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  return moved(cv::Rect(static_cast<int>(cc.x + 0.5F) - frame.width / 2,
+                        static_cast<int>(cc.y + 0.5F) - frame.height / 2, frame.width,
+                        frame.height))
       .clone();
 }
 
