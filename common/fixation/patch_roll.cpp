@@ -7,18 +7,12 @@
 #include <utility>
 #include <vector>
 
+#include "common/image/reduced_grey.hpp"
+
 namespace kapfix {
 namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-
-// One channel of 32-bit floats (the mean of three).
-cv::Mat Grey32(const cv::Mat& plane) {
-  cv::Mat f;
-  plane.convertTo(f, CV_32F);
-  if (f.channels() == 3) cv::transform(f, f, cv::Matx13f(1.F / 3, 1.F / 3, 1.F / 3));
-  return f;
-}
 
 // [px] how far the refinement may move the displacement in all
 constexpr double kRefineReachPx = 2;
@@ -37,8 +31,8 @@ class RollFit {
  public:
   RollFit(const cv::Mat& reference, const cv::Mat& around, cv::Point around_origin,
           cv::Point2d patch_centre, int reduce, int margin)
-      : reference_(Reduced(reference, reduce)),
-        around_(Reduced(around, reduce)),
+      : reference_(ReducedGrey(reference, reduce)),
+        around_(ReducedGrey(around, reduce)),
         around_origin_(around_origin),
         patch_centre_(patch_centre),
         reduce_(reduce) {
@@ -70,15 +64,6 @@ class RollFit {
   }
 
  private:
-  static cv::Mat Reduced(const cv::Mat& plane, int reduce) {
-    cv::Mat grey = Grey32(plane);
-    if (reduce == 1) return grey;
-    cv::Mat small;
-    cv::resize(grey, small, cv::Size(plane.cols / reduce, plane.rows / reduce), 0, 0,
-               cv::INTER_AREA);
-    return small;
-  }
-
   cv::Mat reference_;
   cv::Mat around_;
   cv::Point around_origin_;
@@ -184,19 +169,14 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
 }
 
 cv::Mat TurnedPlane(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg) {
-  return TurnedWindow(plane, centre, roll_deg, cv::Rect(0, 0, plane.cols, plane.rows));
-}
-
-cv::Mat TurnedWindow(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg,
-                     const cv::Rect& window) {
   // getRotationMatrix2D turns counter-clockwise on the screen for a positive angle (y down):
   // content from +x towards −y. Ours is +x towards +y, hence −roll_deg.
-  cv::Mat turn = cv::getRotationMatrix2D(
-      cv::Point2f(static_cast<float>(centre.x), static_cast<float>(centre.y)), -roll_deg, 1.0);
-  turn.at<double>(0, 2) -= window.x;
-  turn.at<double>(1, 2) -= window.y;
   cv::Mat turned;
-  cv::warpAffine(plane, turned, turn, window.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::warpAffine(
+      plane, turned,
+      cv::getRotationMatrix2D(
+          cv::Point2f(static_cast<float>(centre.x), static_cast<float>(centre.y)), -roll_deg, 1.0),
+      plane.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   return turned;
 }
 

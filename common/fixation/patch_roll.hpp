@@ -50,9 +50,6 @@ std::optional<PatchRoll> ReadPatchRoll(const cv::Mat& reference_plane, const cv:
 // towards +y), the same size and type, borders replicated: what a reference looks like through
 // a camera that has rolled by that much since.
 cv::Mat TurnedPlane(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg);
-// The part `window` [px] of TurnedPlane(plane, centre, roll_deg), computed alone.
-cv::Mat TurnedWindow(const cv::Mat& plane, const cv::Point2d& centre, double roll_deg,
-                     const cv::Rect& window);
 
 // [px] Where the frame centre's content has moved, given where the patch's has (`displacement`)
 // and the roll [rad] about the centre: a roll moves content at r from the centre by

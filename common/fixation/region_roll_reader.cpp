@@ -7,22 +7,12 @@
 #include <opencv2/video/tracking.hpp>
 #include <stdexcept>
 
+#include "common/image/reduced_grey.hpp"
+
 namespace kapfix {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-
-// One channel of 32-bit floats (the mean of three), reduced by `k` (area average): reduced
-// pixel i covers full-size pixels k·i … k·i + k − 1 (`plane` a multiple of k wide and high).
-cv::Mat ReducedGrey(const cv::Mat& plane, int k) {
-  cv::Mat f;
-  plane.convertTo(f, CV_32F);
-  if (f.channels() == 3) cv::transform(f, f, cv::Matx13f(1.F / 3, 1.F / 3, 1.F / 3));
-  if (k == 1) return f;
-  cv::Mat small;
-  cv::resize(f, small, cv::Size(f.cols / k, f.rows / k), 0, 0, cv::INTER_AREA);
-  return small;
-}
 
 }  // namespace
 

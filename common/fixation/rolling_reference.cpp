@@ -8,6 +8,7 @@
 #include "common/fixation/patch_roll.hpp"
 
 namespace kapfix {
+
 bool RollTrackingOptions::IsValid(std::string* error) const {
   const auto fail = [error](const std::string& message) {
     if (error) *error = message;
