@@ -30,6 +30,9 @@ struct SearchConfig {
   // Free-swing processes (SSP, PSS, recording) stop after this many frames or seconds.
   int swing_frames = 300;     // [frames] 2…100000
   double swing_seconds = 20;  // [s] 0.1…3600
+  // [s] a lock lost this long runs SSP over the free swing that follows and moves the fixation
+  // to its slice, on the same reference frame (SPEC §2.6); 0 = never.
+  double ssp_after_lost_s = 3;
 
   bool IsValid(std::string* error) const;
 
@@ -49,6 +52,7 @@ struct SearchConfig {
     visit("channel", channel, ParseColorChannel);
     visit("slice_score", score, SliceScoreOfWord);
     visit("dc_hysteresis_px", hysteresis_px);
+    visit("ssp_after_lost_s", ssp_after_lost_s);
   }
 
  private:

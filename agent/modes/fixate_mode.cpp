@@ -2,10 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "agent/modes/report_messages.hpp"
 #include "agent/modes/run_options.hpp"
 #include "common/fixation/patch_self_confidence.hpp"
 
@@ -93,6 +96,61 @@ void FixateMode::Build() {
   // The view to hold is the one the operator fixated, not the one in front of the camera
   // when a setting changed.
   if (!reference_frame_.empty()) loop_->SetReference(reference_frame_, reference_angles_);
+  lost_lock_ssp_.reset();
+  const LostLockSspOptions options = MakeLostLockSspOptions(context_.settings());
+  if (kind_ != AgentMode::kFixate || options.after_frames == 0) return;
+  ssp_strategy_ = context_.strategy();
+  lost_lock_ssp_.emplace(*ssp_strategy_, options);
+}
+
+void FixateMode::SeeLostLock(const CapturedFrame& frame, bool lock_lost) {
+  if (!lost_lock_ssp_) return;
+  const bool was_running = lost_lock_ssp_->running();
+  const std::optional<SliceSelection> selection =
+      lost_lock_ssp_->See(context_.Plane(frame.image), lock_lost);
+  if (!was_running && lost_lock_ssp_->running()) {
+    spdlog::info(
+        "frame {}: the lock has stayed lost for {:.1f} s on slice {}: SSP runs over the swing "
+        "the servos now leave free",
+        frame.index, (lost_lock_ssp_->lost_frames() - 1) * context_.options().frame_period_s,
+        context_.slice());
+  }
+  if (!selection) return;
+  const SearchConfig& search = context_.settings().search;
+  SliceReportContext report;
+  report.score = search.score;
+  report.hysteresis_px = search.hysteresis_px;
+  report.patch_size_px = search.patch_px;
+  report.strategy = search.strategy;
+  SwingProgress progress;
+  progress.done = selection->frames_used;
+  progress.total = selection->frames_used;
+  progress.finished = true;
+  context_.events().OnSliceReport(MakeSliceReport(*selection, report, progress));
+  // The slice in use has just been lost for the whole wait and run: whatever SSP thinks of its
+  // graph (a flat patch reads no motion and so no direction change), it is not the answer.
+  // Next in SSP's ranking comes the first slice whose patch the search finds surely in the
+  // reference frame, the view held.
+  const int from = context_.slice();
+  std::vector<int> others;
+  for (const int slice : selection->ranking) {
+    if (slice != from) others.push_back(slice);
+  }
+  if (others.empty()) return;  // one slice: nothing else to try
+  const int to = ConfidentSlice(reference_frame_, others, loop_->options(), *ssp_strategy_);
+  spdlog::warn(
+      "frame {}: SSP over the {} frames of the lost lock recommends slice {}{}: the same view is "
+      "now held by slice {}'s patch instead of slice {}'s (select_slice overrides)",
+      frame.index, selection->frames_used, selection->best_slice,
+      selection->best_slice == to ? std::string()
+                                  : fmt::format(", and slice {} is the first after it the "
+                                                "search finds surely in the view held",
+                                                to),
+      to, from);
+  context_.SetSlice(to);
+  context_.events().OnModeChanged(kind_, to);
+  Build();
+  lock_lost_ = false;  // the new patch's lock starts unconfirmed, not lost
 }
 
 void FixateMode::OnSettings(bool rebuild) {
@@ -173,6 +231,8 @@ FrameOutcome FixateMode::Process(const CapturedFrame& frame, const ServoTargets&
     outcome.reference_frame = reference_index_;
     outcome.reference_seen_at = reference_seen_at_;
   }
+  // Last: a slice changed here holds the view from the next frame on.
+  SeeLostLock(frame, outcome.step.lock_lost);
   return outcome;
 }
 

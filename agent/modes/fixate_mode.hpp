@@ -8,13 +8,15 @@
 #include "agent/modes/mode.hpp"
 #include "agent/modes/mode_context.hpp"
 #include "common/fixation/fixation_loop.hpp"
+#include "common/selection/lost_lock_ssp.hpp"
 
 namespace kapfix::agent {
 
 // Fixate (SPEC §4): every frame is matched against the reference taken when fixate began, and
 // the fixation loop turns the displacement into servo targets. Owns the loop, the reference
 // and the lock state; new settings rebuild the loop on the same reference (new gains only:
-// the controller keeps its state).
+// the controller keeps its state). A lock lost for search.ssp_after_lost_s runs SSP over the
+// free swing that follows and moves the fixation to its slice, on the same reference frame.
 class FixateMode : public Mode {
  public:
   explicit FixateMode(ModeContext& context) : FixateMode(context, AgentMode::kFixate) {}
@@ -41,13 +43,19 @@ class FixateMode : public Mode {
   // Logs a warning when the fixated slice's patch is one the search barely finds in the
   // reference frame itself (PatchSelfConfidence), naming the slice that is found best.
   void WarnOfAWeakPatch(std::uint64_t frame_index) const;
+  // SSP over the swing after a lost lock (LostLockSsp): on the frame its run ends, the fixation
+  // moves to the recommended slice when that is not the one in use.
+  void SeeLostLock(const CapturedFrame& frame, bool lock_lost);
 
   ModeContext& context_;
   const AgentMode kind_;
   std::unique_ptr<FixationLoop> loop_;
-  bool lock_lost_ = false;               // the last frame's lock state, to log its changes
-  bool trailing_ = false;                // the last frame: lock held, the view off target
-  std::uint64_t off_target_frames_ = 0;  // since the last off-target log line
+  // The strategy the lost-lock SSP was built with (a settings change replaces the context's).
+  std::shared_ptr<const SearchStrategy> ssp_strategy_;
+  std::optional<LostLockSsp> lost_lock_ssp_;  // stored reference only (fixate, not follow)
+  bool lock_lost_ = false;                    // the last frame's lock state, to log its changes
+  bool trailing_ = false;                     // the last frame: lock held, the view off target
+  std::uint64_t off_target_frames_ = 0;       // since the last off-target log line
   std::optional<std::uint64_t> last_off_target_log_;  // frame index of that line
   cv::Mat reference_frame_;                           // the frame the reference was taken from
   std::uint64_t reference_index_ = 0;                 // its index

@@ -123,6 +123,19 @@ std::optional<std::string> SimulatedWorldScaleNote(const AgentConfig& config) {
   return std::string(line);
 }
 
+LostLockSspOptions MakeLostLockSspOptions(const AgentConfig& config) {
+  LostLockSspOptions o;
+  const double wait_s = config.search.ssp_after_lost_s;
+  o.after_frames =
+      wait_s > 0 ? std::max(1, static_cast<int>(std::lround(wait_s * config.camera.fps))) : 0;
+  // The free swing ends at whichever of its two deadlines comes first (simulated time).
+  o.run_frames = std::max(
+      2, std::min(config.search.swing_frames,
+                  static_cast<int>(std::lround(config.search.swing_seconds * config.camera.fps))));
+  o.selection = MakeSliceSelectionOptions(config.search);
+  return o;
+}
+
 ClosedLoopOptions MakeClosedLoopOptions(const AgentConfig& config) {
   ClosedLoopOptions o = ClosedLoopOptions::ForMotion(ToPlatformMotion(config.simulation.motion));
   AgentConfig without_world = config;
@@ -138,6 +151,7 @@ ClosedLoopOptions MakeClosedLoopOptions(const AgentConfig& config) {
   o.ssp_frames =
       std::min(config.search.swing_frames,
                static_cast<int>(std::lround(config.search.swing_seconds * config.camera.fps)));
+  o.ssp_after_lost_frames = MakeLostLockSspOptions(config).after_frames;
   return o;
 }
 

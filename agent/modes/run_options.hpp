@@ -9,6 +9,7 @@
 #include "common/evaluation/closed_loop_evaluation.hpp"
 #include "common/fixation/fixation_loop.hpp"
 #include "common/search/search_strategy.hpp"
+#include "common/selection/lost_lock_ssp.hpp"
 #include "common/selection/patch_size_selection.hpp"
 #include "common/selection/slice_selection_options.hpp"
 #include "common/sim/simulated_platform.hpp"
@@ -25,6 +26,9 @@ SearchOptions MakeSearchOptions(const SearchConfig& search);
 FixationOptions MakeFixationOptions(const SearchConfig& search, int slice,
                                     FixationOptions::Reference reference);
 SliceSelectionOptions MakeSliceSelectionOptions(const SearchConfig& search);
+// SSP after a lost lock (FixateMode, and the benchmark's flights): the wait from
+// search.ssp_after_lost_s at the camera's rate (0 = off), SSP's run as long as its free swing.
+LostLockSspOptions MakeLostLockSspOptions(const AgentConfig& config);
 // The thesis's candidate sizes that fit into a `plane` of this size.
 PatchSizeSelectionOptions MakePatchSizeSelectionOptions(const SearchConfig& search, cv::Size plane);
 

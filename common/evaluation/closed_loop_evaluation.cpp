@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include "common/evaluation/aim_floor.hpp"
 #include "common/evaluation/free_swing_slice.hpp"
 #include "common/fixation/patch_self_confidence.hpp"
+#include "common/image/color_channel.hpp"
+#include "common/selection/lost_lock_ssp.hpp"
 #include "common/sim/scene_camera.hpp"
 
 namespace kapfix {
@@ -61,7 +64,11 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     return fail("calibration scale must be > 0, got " + std::to_string(calibration_scale));
   }
   if (frames < 1) return fail("closed loop needs ≥ 1 frame, got " + std::to_string(frames));
-  if (start == Start::kAfterSsp && ssp_frames < 2) {
+  if (ssp_after_lost_frames < 0) {
+    return fail("SSP after a lost lock: the wait must be ≥ 0 frames, got " +
+                std::to_string(ssp_after_lost_frames));
+  }
+  if ((start == Start::kAfterSsp || ssp_after_lost_frames > 0) && ssp_frames < 2) {
     return fail("SSP before fixation needs ≥ 2 frames, got " + std::to_string(ssp_frames));
   }
   if (!std::isfinite(frame_period_s) || frame_period_s <= 0) {
@@ -156,12 +163,11 @@ class ClosedLoopRun {
     held_ = platform_.ViewOffset();
     const SimulatedFrame reference = platform_.CaptureFrame();
     const ServoTargets seen_through = belief_->Expose(reference.frame);
+    reference_image_ = reference.image;
+    reference_seen_through_ = seen_through;
     loop_->SetReference(reference.image, seen_through);
     reference_roll_rad_ = RollRad(reference.frame);
-    const cv::Rect patch = loop_->patch();
-    patch_centre_ =
-        cv::Point2d(patch.x + (patch.width - 1) / 2.0 - (reference.image.cols - 1) / 2.0,
-                    patch.y + (patch.height - 1) / 2.0 - (reference.image.rows - 1) / 2.0);
+    patch_centre_ = PatchCentre();
     const FixationLoop::Step step =
         loop_->Process(reference.image, seen_through, options_.frame_period_s);
     Command(reference.frame, step.targets);
@@ -187,6 +193,7 @@ class ClosedLoopRun {
     off_target_ = step.off_target;
     honesty_.Add(view_error, lock_lost_, off_target_, /*seen=*/true, &figures_);
     RecordMeasurement(step, offset, frame.frame);
+    SeeLostLock(frame.image, step.lock_lost);
   }
 
   // The flight's figures from the accumulators; call once, after the last StepFrame.
@@ -225,15 +232,52 @@ class ClosedLoopRun {
     return LensCalibration{deg_per_px, deg_per_px};
   }
 
-  // Controller, search strategy, slice (after SSP's free swing if asked), belief and loop,
-  // in this order.
-  void SetUp() {
+  // [px] the patch's centre from the frame's centre.
+  cv::Point2d PatchCentre() const {
+    const cv::Rect patch = loop_->patch();
+    return {patch.x + (patch.width - 1) / 2.0 - (reference_image_.cols - 1) / 2.0,
+            patch.y + (patch.height - 1) / 2.0 - (reference_image_.rows - 1) / 2.0};
+  }
+
+  // A loop on `fixation`'s slice with a new controller, acting through the one servo belief.
+  void MakeLoop(const FixationOptions& fixation) {
     std::string error;
     std::unique_ptr<Controller> controller = MakeController(
         options_.controller, options_.gains, calibration_, EffectivePredictive(options_), &error);
     predictive_ = dynamic_cast<const PredictiveController*>(controller.get());
-    const std::shared_ptr<const SearchStrategy> strategy =
-        MakeSearchStrategy(options_.strategy, &error);
+    loop_ = std::make_unique<FixationLoop>(
+        fixation, strategy_,
+        std::make_unique<ServoBeliefController>(std::move(controller), belief_, calibration_),
+        calibration_);
+  }
+
+  // The agent's SSP after a lost lock (FixateMode): on the frame its run ends, the same
+  // reference is held by the next slice of SSP's ranking whose patch the search finds surely
+  // in it, the slice in use left out.
+  void SeeLostLock(const cv::Mat& frame_bgr, bool lock_lost) {
+    if (!lost_lock_ssp_) return;
+    const std::optional<SliceSelection> selection =
+        lost_lock_ssp_->See(ExtractChannel(frame_bgr, fixation_.channel), lock_lost);
+    if (!selection) return;
+    std::vector<int> others;
+    for (const int slice : selection->ranking) {
+      if (slice != fixation_.slice) others.push_back(slice);
+    }
+    if (others.empty()) return;
+    fixation_.slice = ConfidentSlice(reference_image_, others, fixation_, *strategy_);
+    MakeLoop(fixation_);
+    loop_->SetReference(reference_image_, reference_seen_through_);
+    patch_centre_ = PatchCentre();
+    figures_.slice = fixation_.slice;
+    ++figures_.slices_after_lost_lock;
+  }
+
+  // Controller, search strategy, slice (after SSP's free swing if asked), belief and loop,
+  // in this order.
+  void SetUp() {
+    std::string error;
+    strategy_ = MakeSearchStrategy(options_.strategy, &error);
+    const std::shared_ptr<const SearchStrategy>& strategy = strategy_;
     FixationOptions fixation = options_.fixation;
     if (options_.start == ClosedLoopOptions::Start::kAfterSsp) {
       const std::vector<int> ranking =
@@ -258,10 +302,18 @@ class ClosedLoopRun {
                            initial_,
                            {pan.rate_limit_deg_per_frame, tilt.rate_limit_deg_per_frame},
                            {pan.backlash_deg, tilt.backlash_deg}});
-    loop_ = std::make_unique<FixationLoop>(
-        fixation, strategy,
-        std::make_unique<ServoBeliefController>(std::move(controller), belief_, calibration_),
-        calibration_);
+    fixation_ = fixation;
+    MakeLoop(fixation);
+    if (options_.ssp_after_lost_frames > 0) {
+      LostLockSspOptions ssp;
+      ssp.after_frames = options_.ssp_after_lost_frames;
+      ssp.run_frames = options_.ssp_frames;
+      ssp.selection.slice_count = fixation.slice_count;
+      ssp.selection.patch_size = fixation.patch_size;
+      ssp.selection.sampling = fixation.sampling;
+      ssp.selection.search = fixation.search;
+      lost_lock_ssp_.emplace(*strategy_, ssp);
+    }
     figures_.frames = options_.frames;
     figures_.slice = fixation.slice;
     loop_us_.reserve(static_cast<std::size_t>(options_.frames));
@@ -391,7 +443,12 @@ class ClosedLoopRun {
   const ServoTargets initial_;
   const PredictiveController* predictive_ = nullptr;  // owned by loop_; null unless predictive
   std::shared_ptr<ServoBelief> belief_;
+  std::shared_ptr<const SearchStrategy> strategy_;
+  FixationOptions fixation_;  // the loop's, its slice the one in use
   std::unique_ptr<FixationLoop> loop_;
+  std::optional<LostLockSsp> lost_lock_ssp_;
+  cv::Mat reference_image_;              // the frame the reference was taken from
+  ServoTargets reference_seen_through_;  // [deg] the angles the loop believes it was seen through
   ServoTargets last_sent_;
   int last_sent_frame_ = -1;
   cv::Point2d held_;               // [px] the reference's view

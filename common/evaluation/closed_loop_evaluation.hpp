@@ -59,7 +59,10 @@ struct ClosedLoopOptions {
   // reference taken mid-swing does.
   enum class Start { kFirstFrame, kAfterSsp, kMoving };
   Start start = Start::kFirstFrame;
-  int ssp_frames = 300;          // [frames] the free swing (the agent's default SSP deadline)
+  int ssp_frames = 300;  // [frames] the free swing (the agent's default SSP deadline)
+  // [frames] a lock lost this long runs SSP over the ssp_frames that follow and moves the
+  // fixation to its slice on the same reference (LostLockSsp, as the agent's fixate); 0 = never.
+  int ssp_after_lost_frames = 0;
   int frames = 600;              // frames processed after the reference frame
   double frame_period_s = 0.04;  // [s] dt handed to the controller (25 frames/s)
 
@@ -106,8 +109,9 @@ struct ClosedLoopFigures {
   // itself the matcher is (motion blur smears without moving the minimum).
   double confidence_loss = 0;
   int frames = 0;
-  int slice = 0;   // the slice fixated (options.fixation's, or SSP's choice)
-  double fps = 0;  // frames per wall-clock second of Process()
+  int slice = 0;                   // the slice fixated (options.fixation's, or SSP's choice)
+  int slices_after_lost_lock = 0;  // moves to another slice by SSP after a lost lock
+  double fps = 0;                  // frames per wall-clock second of Process()
   double loop_latency_p50_ms = 0, loop_latency_p99_ms = 0;  // [ms] of Process()
   // [1] the predictive controller's final online estimate of the pan axis's deg per px ÷ the
   // true value (1 = perfect); NaN for the other controllers.

@@ -241,6 +241,64 @@ TEST(ModeRunnerTest, FixateMeasuresEachFrameAgainstTheFirst) {
   }
 }
 
+// A free swing whose middle slice's band (the default slice, as far as the search reaches) is
+// flat in every frame: a first-frame fixation there is lost at once and never re-acquired.
+std::vector<CapturedFrame> SwingWithAFlatMiddle(int frames) {
+  std::vector<CapturedFrame> swing = Swing(frames);
+  const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
+  const int top = std::max(0, middle.y - 24 - 4);
+  const int bottom = std::min(kFrame.height, middle.br().y + 24 + 4);
+  for (CapturedFrame& frame : swing) {
+    frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+  }
+  return swing;
+}
+
+// Fixating the flat middle from the first frame, SSP after a lost lock 0.1 s (3 frames) and
+// SSP's deadline 20 frames: the outcomes of 60 frames.
+std::vector<FrameOutcome> FixateTheFlatMiddle(double ssp_after_lost_s,
+                                              RecordingModeEvents* events) {
+  AgentConfig config = SmallConfig();
+  config.search.ssp_after_lost_s = ssp_after_lost_s;
+  config.search.swing_frames = 20;
+  ModeRunner runner(config, Options(AgentMode::kFixate), *events);
+  std::vector<FrameOutcome> outcomes;
+  for (const CapturedFrame& frame : SwingWithAFlatMiddle(60)) {
+    outcomes.push_back(Feed(runner, frame));
+  }
+  return outcomes;
+}
+
+TEST(ModeRunnerTest, ALockThatStaysLostMovesTheSameViewToTheSliceSspFindsAfterIt) {
+  RecordingModeEvents events;
+  std::string log;
+  std::vector<FrameOutcome> outcomes;
+  log = LoggedDuring([&] { outcomes = FixateTheFlatMiddle(0.1, &events); });
+  const int middle = (kSlices + 1) / 2;
+  ASSERT_FALSE(outcomes.empty());
+  EXPECT_TRUE(outcomes[10].step.lock_lost) << "the flat patch must be lost first";
+  EXPECT_EQ(outcomes[10].slice, middle);
+  const FrameOutcome& last = outcomes.back();
+  EXPECT_NE(last.slice, middle) << log;
+  EXPECT_EQ(last.mode, AgentMode::kFixate);
+  EXPECT_EQ(last.reference_frame, outcomes.front().reference_frame) << "the same view is held";
+  EXPECT_FALSE(last.step.lock_lost) << log;
+  EXPECT_TRUE(last.step.match.found);
+  EXPECT_EQ(events.finished_slice_reports(), 1) << "the operator sees SSP's result";
+  ASSERT_FALSE(events.modes.empty());
+  EXPECT_EQ(events.modes.back(), std::make_pair(AgentMode::kFixate, last.slice));
+  EXPECT_NE(log.find("SSP over the 20 frames of the lost lock recommends slice"), std::string::npos)
+      << log;
+}
+
+TEST(ModeRunnerTest, WithSspAfterALostLockOffTheLostSliceStays) {
+  RecordingModeEvents events;
+  const std::vector<FrameOutcome> outcomes = FixateTheFlatMiddle(0, &events);
+  EXPECT_EQ(outcomes.back().slice, (kSlices + 1) / 2);
+  EXPECT_TRUE(outcomes.back().step.lock_lost);
+  EXPECT_EQ(events.finished_slice_reports(), 0);
+}
+
 TEST(ModeRunnerTest, SspFinishesAtTheDeadlineAndReportsTheSlice) {
   RecordingModeEvents events;
   ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle), events);

@@ -77,6 +77,32 @@ TEST(PyramidSearchTest, AnAnswerTheFinerLevelsWalkedOffTheCoarseOneIsNotTrusted)
   EXPECT_GT(same.confidence, 0.2);
 }
 
+// A patch on the frame's bottom edge, as a bottom slice's is (text_motion.jpg, a 300×300
+// window): its content moved down by 12 px has left the frame, and the lowest shift scored lies
+// on the edge, the profile still falling towards it. That read 0 px at confidence 0.6-0.7 and
+// was claimed in flight (boat, slice 9, 14-47 px off); it is no measurement on that axis. The
+// same patch moved up is measured and trusted.
+TEST(PyramidSearchTest, AMinimumOnTheFramesEdgeIsNotTrustedAlongThatAxis) {
+  static const cv::Mat plane =
+      ExtractChannel(testing::LoadOpenCvPhoto("text_motion.jpg"), ColorChannel::kGreen);
+  const auto window = [](int dx, int dy) {
+    return plane(cv::Rect(100 - dx, 40 - dy, 300, 300)).clone();
+  };
+  const SampleSet bottom({cv::Rect(100, 200, 100, 100)}, {SamplingKind::kRandom, 0.1, 1});
+  const ReferencePatch reference(window(0, 0), bottom);
+  SearchOptions options;
+  options.axis = SearchAxis::kBoth;
+  options.range = 40;
+  const SearchResult down = PyramidSearch().Search(reference, window(2, 12), options);
+  ASSERT_TRUE(down.found);
+  ASSERT_LT(down.shift.y, 12) << "the shift this test is about is beyond the frame";
+  EXPECT_EQ(down.confidence_y, 0.0) << "read " << down.shift.y << " px";
+  EXPECT_EQ(down.confidence, 0.0);
+  const SearchResult up = PyramidSearch().Search(reference, window(2, -12), options);
+  EXPECT_NEAR(up.displacement.y, -12, 1.0);
+  EXPECT_GT(up.confidence, 0.2);
+}
+
 TEST(PyramidSearchTest, BuildsTheReducedReferenceOncePerStoredReference) {
   const ReferencePatch reference(AeroWindow(0, 0), CentralRandomTenth());
   const PyramidSearch search;
