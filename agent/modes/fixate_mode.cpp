@@ -147,9 +147,12 @@ void FixateMode::SeeLostLock(const CapturedFrame& frame, bool lock_lost) {
                                                 "search finds surely in the view held",
                                                 to),
       to, from);
+  // The swing's centre is in servo angles, the same whichever patch holds the view.
+  const std::optional<ServoTargets> centre = loop_->swing_centre();
   context_.SetSlice(to);
   context_.events().OnModeChanged(kind_, to);
   Build();
+  if (centre) loop_->KeepSwingCentre(*centre);
   lock_lost_ = false;  // the new patch's lock starts unconfirmed, not lost
 }
 

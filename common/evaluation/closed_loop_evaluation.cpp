@@ -265,8 +265,10 @@ class ClosedLoopRun {
     }
     if (others.empty()) return;
     fixation_.slice = ConfidentSlice(reference_image_, others, fixation_, *strategy_);
+    const std::optional<ServoTargets> centre = loop_->swing_centre();
     MakeLoop(fixation_);
     loop_->SetReference(reference_image_, reference_seen_through_);
+    if (centre) loop_->KeepSwingCentre(*centre);
     patch_centre_ = PatchCentre();
     figures_.slice = fixation_.slice;
     ++figures_.slices_after_lost_lock;

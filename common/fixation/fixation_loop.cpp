@@ -108,6 +108,7 @@ void FixationLoop::SetReference(const cv::Mat& frame_bgr,
   reference_.Reset(plane, patch, samples_);
   centre_samples_.clear();
   centre_sum_ = {};
+  kept_centre_.reset();
   if (seen_through) {
     centre_samples_.push_back(*seen_through);
     centre_sum_ = *seen_through;
@@ -250,7 +251,14 @@ void FixationLoop::AddCentreSample(const ServoTargets& current, const cv::Point2
   }
 }
 
+void FixationLoop::KeepSwingCentre(const ServoTargets& centre) {
+  kept_centre_ = centre;
+  centre_samples_.clear();
+  centre_sum_ = {};
+}
+
 std::optional<ServoTargets> FixationLoop::swing_centre() const {
+  if (kept_centre_) return kept_centre_;
   if (centre_samples_.empty()) return std::nullopt;
   const double n = static_cast<double>(centre_samples_.size());
   return ServoTargets{centre_sum_.pan_deg / n, centre_sum_.tilt_deg / n};
@@ -335,7 +343,8 @@ FixationLoop::Step FixationLoop::Process(const cv::Mat& frame_bgr, const ServoTa
   step.off_target = step.lock_lost || !whole || step.riding_out || !held_view;
   if (options_.reference == FixationOptions::Reference::kPrevious) {
     displacement = FollowStep(plane, displacement);
-  } else if (whole) {
+  } else if (whole && (confirmed_ || !kept_centre_)) {
+    kept_centre_.reset();
     AddCentreSample(current, displacement);
   }
 

@@ -192,6 +192,10 @@ class FixationLoop {
   // while the view was tracked (swing_centre_frames); none when neither the reference's
   // angles nor a trusted frame are known (a lost lock then holds the servos).
   std::optional<ServoTargets> swing_centre() const;
+  // The same view held before by another patch (SSP after a lost lock): until this loop's lock
+  // is confirmed, its swing centre is `centre` [deg], and its unconfirmed frames, which may sit a
+  // texture period off, add nothing to it (left05.jpg, boat: they drove the servos 11° off).
+  void KeepSwingCentre(const ServoTargets& centre);
 
   void SetCalibration(const LensCalibration& calibration);
   // New operator gains for the controller, keeping its history (bumpless; issue 15 item 7).
@@ -241,7 +245,8 @@ class FixationLoop {
   int clear_frames_ = 0;      // frames in a row at or above lock_regain_confidence
   bool confirmed_ = false;    // the lock has been confirmed since the reference or regain
   bool reacquiring_ = false;  // the lock was lost and is not yet regained
-  bool returning_ = false;    // re-acquired, the servos bringing the view back
+  std::optional<ServoTargets> kept_centre_;  // [deg] KeepSwingCentre's, until a confirmed lock
+  bool returning_ = false;                   // re-acquired, the servos bringing the view back
 };
 
 }  // namespace kapfix

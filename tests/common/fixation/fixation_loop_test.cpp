@@ -136,6 +136,30 @@ TEST(FixationLoopTest, ALostLockSendsTheServosToTheCentreOfTheSwingSeen) {
   EXPECT_NEAR(lost.targets.tilt_deg, (3.0 + 3 * 0.6) / 4, 0.015);
 }
 
+// The same view held by another patch after SSP (KeepSwingCentre): the previous patch's swing
+// centre stands until the new lock is confirmed, and the new patch's unconfirmed frames, which
+// on a chessboard may sit a square off, do not move it; once confirmed, the swing seen from
+// then on takes over.
+TEST(FixationLoopTest, AKeptSwingCentreStandsUntilTheLockIsConfirmed) {
+  FixationOptions o = Options();
+  FixationLoop loop(o, Pyr(), PlainP(), kLens);
+  const cv::Mat reference = Texture();
+  loop.SetReference(reference, ServoTargets{-2.0, 3.0});
+  loop.KeepSwingCentre(ServoTargets{4.0, -1.0});
+  // Seen 6 px right and 4 px up through (1, 1): centred at (1.6, 0.6).
+  for (int k = 0; k < o.lock_regain_frames; ++k) {
+    const std::optional<ServoTargets> before = loop.swing_centre();
+    ASSERT_TRUE(before);
+    EXPECT_DOUBLE_EQ(before->pan_deg, 4.0) << "frame " << k;
+    EXPECT_DOUBLE_EQ(before->tilt_deg, -1.0) << "frame " << k;
+    ASSERT_TRUE(loop.Process(testing::Translated(reference, 6, -4), {1.0, 1.0}, 0.04).trusted);
+  }
+  const std::optional<ServoTargets> after = loop.swing_centre();
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->pan_deg, 1.6, 0.015);
+  EXPECT_NEAR(after->tilt_deg, 0.6, 0.015);
+}
+
 // The centre forgets trusted frames older than swing_centre_frames (the line's slow sway
 // moves it), the reference's own angles among them.
 TEST(FixationLoopTest, TheSwingsCentreForgetsFramesBeyondItsWindow) {
