@@ -25,8 +25,6 @@ LostLockSsp::LostLockSsp(const SearchStrategy& strategy, LostLockSspOptions opti
     : strategy_(strategy), options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
-  options_.selection.deadline_frames = 0;
-  options_.selection.deadline_seconds = 0;
 }
 
 std::optional<SliceSelection> LostLockSsp::See(const cv::Mat& plane, bool lock_lost) {

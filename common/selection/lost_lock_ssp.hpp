@@ -16,7 +16,8 @@ struct LostLockSspOptions {
   int after_frames = 90;
   // [frames] SSP's run, the first frame included (≥ 2): SSP's own deadline.
   int run_frames = 300;
-  SliceSelectionOptions selection;  // its deadlines are unused: run_frames decides
+  SliceSelectionOptions selection;  // its deadlines are unused (SliceSelectionRun leaves them to
+                                    // the caller): run_frames decides
 
   bool IsValid(std::string* error) const;
 };

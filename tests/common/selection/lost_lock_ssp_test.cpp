@@ -51,7 +51,9 @@ TEST(LostLockSspTest, ALockLostLongEnoughGetsSspOverTheFramesAfterTheWait) {
   for (std::size_t t = 0; t < frames.size(); ++t) {
     result = ssp.See(frames[t], /*lock_lost=*/true);
     EXPECT_EQ(ssp.running(), t >= kWait && t + 1 < frames.size()) << "frame " << t;
-    if (t + 1 < frames.size()) EXPECT_FALSE(result.has_value()) << "frame " << t;
+    if (t + 1 < frames.size()) {
+      EXPECT_FALSE(result.has_value()) << "frame " << t;
+    }
   }
   ASSERT_TRUE(result.has_value());
   // SSP itself over the frames after the wait.
