@@ -26,7 +26,6 @@ COLLISIONS='
 patch_size_px|proto/kapfix/v1/slices.proto|SspReport.patch_size_px: the patch an SSP run used, a result
 patch_size_px|agent/modes/report_messages.cpp|fills SspReport.patch_size_px (a result)
 patch_size_px|agent/modes/report_messages.hpp|SspReport input struct (a result)
-patch_size_px|agent/modes/ssp_mode.cpp|the SSP report input struct (a result)
 dc_hysteresis_px|proto/kapfix/v1/slices.proto|SspReport.dc_hysteresis_px: the hysteresis an SSP run used, a result
 window_s|groundstation/status/lock_quality.cpp|LockQuality::window_s: the telemetry window the station averages over
 window_s|groundstation/status/lock_quality.hpp|LockQuality::window_s: the telemetry window the station averages over

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "agent/modes/report_messages.hpp"
 #include "agent/modes/run_options.hpp"
@@ -107,7 +106,7 @@ void FixateMode::SeeLostLock(const CapturedFrame& frame, bool lock_lost) {
   if (!lost_lock_ssp_) return;
   const bool was_running = lost_lock_ssp_->running();
   const std::optional<SliceSelection> selection =
-      lost_lock_ssp_->See(context_.Plane(frame.image), lock_lost);
+      lost_lock_ssp_->See(lock_lost, [&] { return context_.Plane(frame.image); });
   if (!was_running && lost_lock_ssp_->running()) {
     spdlog::info(
         "frame {}: the lock has stayed lost for {:.1f} s on slice {}: SSP runs over the swing "
@@ -116,28 +115,19 @@ void FixateMode::SeeLostLock(const CapturedFrame& frame, bool lock_lost) {
         context_.slice());
   }
   if (!selection) return;
-  const SearchConfig& search = context_.settings().search;
-  SliceReportContext report;
-  report.score = search.score;
-  report.hysteresis_px = search.hysteresis_px;
-  report.patch_size_px = search.patch_px;
-  report.strategy = search.strategy;
   SwingProgress progress;
   progress.done = selection->frames_used;
   progress.total = selection->frames_used;
   progress.finished = true;
-  context_.events().OnSliceReport(MakeSliceReport(*selection, report, progress));
-  // The slice in use has just been lost for the whole wait and run: whatever SSP thinks of its
-  // graph (a flat patch reads no motion and so no direction change), it is not the answer.
-  // Next in SSP's ranking comes the first slice whose patch the search finds surely in the
-  // reference frame, the view held.
+  context_.events().OnSliceReport(
+      MakeSliceReport(*selection, MakeSliceReportContext(context_.settings().search), progress));
+  // Next in SSP's ranking after the slice just lost comes the first whose patch the search
+  // finds surely in the reference frame, the view held.
   const int from = context_.slice();
-  std::vector<int> others;
-  for (const int slice : selection->ranking) {
-    if (slice != from) others.push_back(slice);
-  }
-  if (others.empty()) return;  // one slice: nothing else to try
-  const int to = ConfidentSlice(reference_frame_, others, loop_->options(), *ssp_strategy_);
+  const std::optional<int> next = ConfidentSliceBesides(reference_frame_, selection->ranking, from,
+                                                        loop_->options(), *ssp_strategy_);
+  if (!next) return;  // one slice: nothing else to try
+  const int to = *next;
   spdlog::warn(
       "frame {}: SSP over the {} frames of the lost lock recommends slice {}{}: the same view is "
       "now held by slice {}'s patch instead of slice {}'s (select_slice overrides)",

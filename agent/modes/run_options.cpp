@@ -123,6 +123,15 @@ std::optional<std::string> SimulatedWorldScaleNote(const AgentConfig& config) {
   return std::string(line);
 }
 
+SliceReportContext MakeSliceReportContext(const SearchConfig& search) {
+  SliceReportContext report;
+  report.score = search.score;
+  report.hysteresis_px = search.hysteresis_px;
+  report.patch_size_px = search.patch_px;
+  report.strategy = search.strategy;
+  return report;
+}
+
 LostLockSspOptions MakeLostLockSspOptions(const AgentConfig& config) {
   LostLockSspOptions o;
   const double wait_s = config.search.ssp_after_lost_s;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "agent/config/agent_config.hpp"
+#include "agent/modes/report_messages.hpp"
 #include "common/control/controller.hpp"
 #include "common/evaluation/closed_loop_evaluation.hpp"
 #include "common/fixation/fixation_loop.hpp"
@@ -26,6 +27,8 @@ SearchOptions MakeSearchOptions(const SearchConfig& search);
 FixationOptions MakeFixationOptions(const SearchConfig& search, int slice,
                                     FixationOptions::Reference reference);
 SliceSelectionOptions MakeSliceSelectionOptions(const SearchConfig& search);
+// How an SSP report names the search that made it.
+SliceReportContext MakeSliceReportContext(const SearchConfig& search);
 // SSP after a lost lock (FixateMode, and the benchmark's flights): the wait from
 // search.ssp_after_lost_s at the camera's rate (0 = off), SSP's run as long as its free swing.
 LostLockSspOptions MakeLostLockSspOptions(const AgentConfig& config);

@@ -23,13 +23,8 @@ FrameOutcome SspMode::Process(const CapturedFrame& frame, const ServoTargets& /*
   if (done || used % kProgressEveryFrames == 0) {
     const SwingProgress progress = window_.Progress(used, done);
     const SliceSelection selection = run_->Result(progress.deadline_reached);
-    const SearchConfig& search = context_.settings().search;
-    SliceReportContext report;
-    report.score = search.score;
-    report.hysteresis_px = search.hysteresis_px;
-    report.patch_size_px = search.patch_px;
-    report.strategy = search.strategy;
-    context_.events().OnSliceReport(MakeSliceReport(selection, report, progress));
+    context_.events().OnSliceReport(
+        MakeSliceReport(selection, MakeSliceReportContext(context_.settings().search), progress));
     if (done) {
       // The recommended slice becomes the one in use; the operator confirms it (or picks
       // another) and starts fixating.

@@ -256,15 +256,13 @@ class ClosedLoopRun {
   // in it, the slice in use left out.
   void SeeLostLock(const cv::Mat& frame_bgr, bool lock_lost) {
     if (!lost_lock_ssp_) return;
-    const std::optional<SliceSelection> selection =
-        lost_lock_ssp_->See(ExtractChannel(frame_bgr, fixation_.channel), lock_lost);
+    const std::optional<SliceSelection> selection = lost_lock_ssp_->See(
+        lock_lost, [&] { return ExtractChannel(frame_bgr, fixation_.channel); });
     if (!selection) return;
-    std::vector<int> others;
-    for (const int slice : selection->ranking) {
-      if (slice != fixation_.slice) others.push_back(slice);
-    }
-    if (others.empty()) return;
-    fixation_.slice = ConfidentSlice(reference_image_, others, fixation_, *strategy_);
+    const std::optional<int> next = ConfidentSliceBesides(reference_image_, selection->ranking,
+                                                          fixation_.slice, fixation_, *strategy_);
+    if (!next) return;
+    fixation_.slice = *next;
     const std::optional<ServoTargets> centre = loop_->swing_centre();
     MakeLoop(fixation_);
     loop_->SetReference(reference_image_, reference_seen_through_);
@@ -307,14 +305,9 @@ class ClosedLoopRun {
     fixation_ = fixation;
     MakeLoop(fixation);
     if (options_.ssp_after_lost_frames > 0) {
-      LostLockSspOptions ssp;
-      ssp.after_frames = options_.ssp_after_lost_frames;
-      ssp.run_frames = options_.ssp_frames;
-      ssp.selection.slice_count = fixation.slice_count;
-      ssp.selection.patch_size = fixation.patch_size;
-      ssp.selection.sampling = fixation.sampling;
-      ssp.selection.search = fixation.search;
-      lost_lock_ssp_.emplace(*strategy_, ssp);
+      lost_lock_ssp_.emplace(*strategy_,
+                             LostLockSspOptions{options_.ssp_after_lost_frames, options_.ssp_frames,
+                                                SliceSelectionOptionsFor(fixation)});
     }
     figures_.frames = options_.frames;
     figures_.slice = fixation.slice;

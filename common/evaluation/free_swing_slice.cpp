@@ -14,16 +14,21 @@ int FreeSwingSlice(SimulatedPlatform& platform, const FixationOptions& fixation,
   return FreeSwingRanking(platform, fixation, strategy, frames).front();
 }
 
-std::vector<int> FreeSwingRanking(SimulatedPlatform& platform, const FixationOptions& fixation,
-                                  const SearchStrategy& strategy, int frames) {
-  if (frames < 2) {
-    throw std::invalid_argument("free swing needs ≥ 2 frames, got " + std::to_string(frames));
-  }
+SliceSelectionOptions SliceSelectionOptionsFor(const FixationOptions& fixation) {
   SliceSelectionOptions options;
   options.slice_count = fixation.slice_count;
   options.patch_size = fixation.patch_size;
   options.sampling = fixation.sampling;
   options.search = fixation.search;
+  return options;
+}
+
+std::vector<int> FreeSwingRanking(SimulatedPlatform& platform, const FixationOptions& fixation,
+                                  const SearchStrategy& strategy, int frames) {
+  if (frames < 2) {
+    throw std::invalid_argument("free swing needs ≥ 2 frames, got " + std::to_string(frames));
+  }
+  const SliceSelectionOptions options = SliceSelectionOptionsFor(fixation);
   std::optional<SliceSelectionRun> run;
   for (int k = 0; k < frames; ++k) {
     if (k > 0) platform.Step();

@@ -4,6 +4,7 @@
 
 #include "common/fixation/fixation_loop.hpp"
 #include "common/search/search_strategy.hpp"
+#include "common/selection/slice_selection_options.hpp"
 #include "common/sim/simulated_platform.hpp"
 
 namespace kapfix {
@@ -16,6 +17,8 @@ namespace kapfix {
 // Throws std::invalid_argument for frames < 2 or a patch that does not fit the frame.
 int FreeSwingSlice(SimulatedPlatform& platform, const FixationOptions& fixation,
                    const SearchStrategy& strategy, int frames);
+// SSP's options for a fixation: its slices, patch, sampling and search.
+SliceSelectionOptions SliceSelectionOptionsFor(const FixationOptions& fixation);
 // The same SSP's ranking of every slice, best first (SliceSelection::ranking).
 std::vector<int> FreeSwingRanking(SimulatedPlatform& platform, const FixationOptions& fixation,
                                   const SearchStrategy& strategy, int frames);

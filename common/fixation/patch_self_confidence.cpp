@@ -35,4 +35,15 @@ int ConfidentSlice(const cv::Mat& frame_bgr, const std::vector<int>& ranking,
   return ranking.front();
 }
 
+std::optional<int> ConfidentSliceBesides(const cv::Mat& frame_bgr, const std::vector<int>& ranking,
+                                         int lost, const FixationOptions& options,
+                                         const SearchStrategy& strategy) {
+  std::vector<int> others;
+  for (const int slice : ranking) {
+    if (slice != lost) others.push_back(slice);
+  }
+  if (others.empty()) return std::nullopt;
+  return ConfidentSlice(frame_bgr, others, options, strategy);
+}
+
 }  // namespace kapfix

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "common/fixation/fixation_loop.hpp"
@@ -22,5 +23,11 @@ double PatchSelfConfidence(const cv::Mat& frame_bgr, int slice, const FixationOp
 // when none is. Throws std::invalid_argument for an empty ranking.
 int ConfidentSlice(const cv::Mat& frame_bgr, const std::vector<int>& ranking,
                    const FixationOptions& options, const SearchStrategy& strategy);
+// The same over `ranking` without `lost`, the slice a lock was just lost on (SSP after a lost
+// lock: whatever SSP thinks of its graph, a flat patch reads no motion and so no direction
+// change, it is not the answer); none when no other slice is ranked.
+std::optional<int> ConfidentSliceBesides(const cv::Mat& frame_bgr, const std::vector<int>& ranking,
+                                         int lost, const FixationOptions& options,
+                                         const SearchStrategy& strategy);
 
 }  // namespace kapfix

@@ -27,7 +27,8 @@ LostLockSsp::LostLockSsp(const SearchStrategy& strategy, LostLockSspOptions opti
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-std::optional<SliceSelection> LostLockSsp::See(const cv::Mat& plane, bool lock_lost) {
+std::optional<SliceSelection> LostLockSsp::See(bool lock_lost,
+                                               const std::function<cv::Mat()>& plane) {
   if (!lock_lost || options_.after_frames == 0) {
     lost_frames_ = 0;
     run_.reset();
@@ -37,10 +38,10 @@ std::optional<SliceSelection> LostLockSsp::See(const cv::Mat& plane, bool lock_l
   if (!run_) {
     // The stretch's first after_frames frames leave re-acquisition its chance: the view swings
     // through the reference twice a period.
-    if (lost_frames_ > options_.after_frames) run_.emplace(plane, strategy_, options_.selection);
+    if (lost_frames_ > options_.after_frames) run_.emplace(plane(), strategy_, options_.selection);
     return std::nullopt;
   }
-  run_->AddFrame(plane);
+  run_->AddFrame(plane());
   if (run_->frames_used() < options_.run_frames) return std::nullopt;
   SliceSelection selection = run_->Result(/*deadline_hit=*/false);
   run_.reset();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -36,10 +37,11 @@ class LostLockSsp {
   // The strategy must outlive this. Throws std::invalid_argument for invalid options.
   LostLockSsp(const SearchStrategy& strategy, LostLockSspOptions options);
 
-  // One frame's plane (single channel, as SSP searches) and whether the lock is lost on it.
-  // Returns SSP's result on the frame its run ends. A frame with the lock held ends a lost
-  // stretch and drops a run in progress.
-  std::optional<SliceSelection> See(const cv::Mat& plane, bool lock_lost);
+  // Whether the lock is lost on a frame, and the frame's plane (single channel, as SSP
+  // searches), asked for only while a run takes frames: a held lock costs nothing. Returns
+  // SSP's result on the frame its run ends. A frame with the lock held ends a lost stretch
+  // and drops a run in progress.
+  std::optional<SliceSelection> See(bool lock_lost, const std::function<cv::Mat()>& plane);
 
   bool running() const { return run_.has_value(); }
   int lost_frames() const { return lost_frames_; }  // in the current lost stretch

@@ -52,6 +52,13 @@ TEST(PatchSelfConfidenceTest, ConfidentSliceKeepsSspsFirstWhenNoPatchPasses) {
   EXPECT_EQ(ConfidentSlice(flat, {3, 1, 2}, options, *Pyr()), 3);
 }
 
+TEST(PatchSelfConfidenceTest, ConfidentSliceBesidesLeavesTheLostSliceOut) {
+  const FixationOptions options;
+  const cv::Mat frame = PhotoWithAFlatTopSlice(options);
+  EXPECT_EQ(ConfidentSliceBesides(frame, {5, 1, 9}, 5, options, *Pyr()), 9);
+  EXPECT_EQ(ConfidentSliceBesides(frame, {5}, 5, options, *Pyr()), std::nullopt);
+}
+
 TEST(PatchSelfConfidenceTest, AnEmptyRankingIsRefused) {
   const FixationOptions options;
   EXPECT_THROW(ConfidentSlice(PhotoWithAFlatTopSlice(options), {}, options, *Pyr()),

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -31,6 +32,11 @@ LostLockSspOptions Options() {
   return options;
 }
 
+// The plane See asks for.
+std::function<cv::Mat()> Plane(const cv::Mat& frame) {
+  return [&frame] { return frame; };
+}
+
 const SearchStrategy& Exhaustive() {
   static const auto strategy = MakeSearchStrategy("all", nullptr);
   return *strategy;
@@ -39,7 +45,7 @@ const SearchStrategy& Exhaustive() {
 TEST(LostLockSspTest, RunsNothingWhileTheLockIsHeld) {
   LostLockSsp ssp(Exhaustive(), Options());
   for (const cv::Mat& frame : Swing(kWait + kRun + 5)) {
-    EXPECT_FALSE(ssp.See(frame, /*lock_lost=*/false).has_value());
+    EXPECT_FALSE(ssp.See(/*lock_lost=*/false, Plane(frame)).has_value());
     EXPECT_FALSE(ssp.running());
   }
 }
@@ -49,7 +55,7 @@ TEST(LostLockSspTest, ALockLostLongEnoughGetsSspOverTheFramesAfterTheWait) {
   LostLockSsp ssp(Exhaustive(), Options());
   std::optional<SliceSelection> result;
   for (std::size_t t = 0; t < frames.size(); ++t) {
-    result = ssp.See(frames[t], /*lock_lost=*/true);
+    result = ssp.See(/*lock_lost=*/true, Plane(frames[t]));
     EXPECT_EQ(ssp.running(), t >= kWait && t + 1 < frames.size()) << "frame " << t;
     if (t + 1 < frames.size()) {
       EXPECT_FALSE(result.has_value()) << "frame " << t;
@@ -68,16 +74,16 @@ TEST(LostLockSspTest, ALockRegainedDropsTheRunAndTheNextLossWaitsAgain) {
   const std::vector<cv::Mat> frames = Swing(3 * kWait + kRun);
   LostLockSsp ssp(Exhaustive(), Options());
   std::size_t t = 0;
-  for (; t < kWait + 3; ++t) ssp.See(frames[t], true);
+  for (; t < kWait + 3; ++t) ssp.See(true, Plane(frames[t]));
   ASSERT_TRUE(ssp.running());
-  EXPECT_FALSE(ssp.See(frames[t++], /*lock_lost=*/false).has_value());
+  EXPECT_FALSE(ssp.See(/*lock_lost=*/false, Plane(frames[t++])).has_value());
   EXPECT_FALSE(ssp.running());
   EXPECT_EQ(ssp.lost_frames(), 0);
   for (int k = 0; k < kWait; ++k) {
-    ssp.See(frames[t++], true);
+    ssp.See(true, Plane(frames[t++]));
     EXPECT_FALSE(ssp.running()) << "lost frame " << k + 1 << " of the new stretch";
   }
-  ssp.See(frames[t++], true);
+  ssp.See(true, Plane(frames[t++]));
   EXPECT_TRUE(ssp.running());
 }
 
@@ -85,13 +91,13 @@ TEST(LostLockSspTest, AStillLostLockWaitsAWholeStretchBeforeTheNextRun) {
   const std::vector<cv::Mat> frames = Swing(kWait + kRun + kWait + 1);
   LostLockSsp ssp(Exhaustive(), Options());
   int results = 0;
-  for (std::size_t t = 0; t < kWait + kRun; ++t) results += ssp.See(frames[t], true) ? 1 : 0;
+  for (std::size_t t = 0; t < kWait + kRun; ++t) results += ssp.See(true, Plane(frames[t])) ? 1 : 0;
   ASSERT_EQ(results, 1);
   for (std::size_t t = kWait + kRun; t < frames.size() - 1; ++t) {
-    ssp.See(frames[t], true);
+    ssp.See(true, Plane(frames[t]));
     EXPECT_FALSE(ssp.running());
   }
-  ssp.See(frames.back(), true);
+  ssp.See(true, Plane(frames.back()));
   EXPECT_TRUE(ssp.running());
 }
 
@@ -100,7 +106,7 @@ TEST(LostLockSspTest, ANoughtWaitIsOff) {
   options.after_frames = 0;
   LostLockSsp ssp(Exhaustive(), options);
   for (const cv::Mat& frame : Swing(kRun + 5)) {
-    EXPECT_FALSE(ssp.See(frame, true).has_value());
+    EXPECT_FALSE(ssp.See(true, Plane(frame)).has_value());
     EXPECT_FALSE(ssp.running());
   }
 }
