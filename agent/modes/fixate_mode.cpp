@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "agent/modes/report_messages.hpp"
 #include "agent/modes/run_options.hpp"
@@ -31,7 +32,7 @@ void FixateMode::Enter(const CapturedFrame& frame, const ServoTargets& current) 
   Build();
   if (kind_ != AgentMode::kFixate) return;
   context_.events().OnReferenceTaken(reference_frame_, current);
-  WarnOfAWeakPatch(frame.index);
+  HoldByASurePatch(frame.index);
 }
 
 void FixateMode::SeeBefore(const CapturedFrame& frame) {
@@ -50,34 +51,39 @@ void FixateMode::SeeBefore(const CapturedFrame& frame) {
       reference_index_, speed_px);
 }
 
-void FixateMode::WarnOfAWeakPatch(std::uint64_t frame_index) const {
+void FixateMode::HoldByASurePatch(std::uint64_t frame_index) {
   // SSP judged the slice over the free swing; the patch is whatever part of the scene is under
   // it now. One the search barely finds in its own frame will not confirm a lock in flight.
   const FixationOptions& options = loop_->options();
-  const SearchStrategy& strategy = *context_.strategy();
-  const double confidence = PatchSelfConfidence(reference_frame_, options.slice, options, strategy);
-  if (confidence >= options.lock_regain_confidence) return;
-  int best = options.slice;
-  double best_confidence = confidence;
-  for (int slice = 1; slice <= options.slice_count; ++slice) {
-    if (slice == options.slice) continue;  // measured above
-    const double c = PatchSelfConfidence(reference_frame_, slice, options, strategy);
-    if (c > best_confidence) {
-      best = slice;
-      best_confidence = c;
-    }
-  }
-  const std::string instead =
-      best == options.slice
-          ? std::string("no other slice is found better here")
-          : fmt::format(
-                "slice {} is found at {:.2f}: select it (select_slice) if the lock does "
-                "not come",
-                best, best_confidence);
-  spdlog::warn(
+  const std::vector<double> confidences =
+      PatchSelfConfidences(reference_frame_, options, *context_.strategy());
+  const int slice = options.slice;
+  const double confidence = confidences.at(static_cast<std::size_t>(slice - 1));
+  const double least = options.lock_regain_confidence;
+  if (confidence >= least) return;
+  const std::optional<int> nearest = NearestConfidentSlice(confidences, slice, least);
+  const std::string weak = fmt::format(
       "frame {}: slice {}'s patch is weak here: the search finds it in its own frame at "
-      "confidence {:.2f}, and a lock is confirmed at {:.2f}, so the lock may never come; {}",
-      frame_index, options.slice, confidence, options.lock_regain_confidence, instead);
+      "confidence {:.2f}, and a lock is confirmed at {:.2f}",
+      frame_index, slice, confidence, least);
+  if (!nearest) {
+    spdlog::warn("{}, so the lock may never come; no slice's patch is found surely here", weak);
+    return;
+  }
+  const double found = confidences.at(static_cast<std::size_t>(*nearest - 1));
+  if (slice_choice_ == SliceChoice::kOperators) {
+    spdlog::warn(
+        "{}, so the lock may never come; slice {} is found at {:.2f}: select it (select_slice) "
+        "if the lock does not come",
+        weak, *nearest, found);
+    return;
+  }
+  spdlog::warn(
+      "{}: the same view is held by slice {}'s patch instead, the nearest found surely ({:.2f}; "
+      "select_slice {} overrides)",
+      weak, *nearest, found, slice);
+  context_.SetSlice(*nearest);
+  Build();
 }
 
 void FixateMode::TakeUp(const HeldView& view) {

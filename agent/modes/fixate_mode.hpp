@@ -19,7 +19,17 @@ namespace kapfix::agent {
 // free swing that follows and moves the fixation to its slice, on the same reference frame.
 class FixateMode : public Mode {
  public:
-  explicit FixateMode(ModeContext& context) : FixateMode(context, AgentMode::kFixate) {}
+  // Whose the slice in use is as fixate begins. The operator's (select_slice) is kept, with a
+  // warning when its patch is weak in the reference frame. The agent's (the middle slice,
+  // SSP's recommendation, the slice of an earlier fixation) gives way to the nearest slice
+  // whose patch the search finds surely there: the view held is the reference frame's either
+  // way, and a patch on a plain wall or a smooth face would lose it from the first frame.
+  enum class SliceChoice { kAgents, kOperators };
+
+  explicit FixateMode(ModeContext& context, SliceChoice choice = SliceChoice::kAgents)
+      : FixateMode(context, AgentMode::kFixate) {
+    slice_choice_ = choice;
+  }
 
   AgentMode kind() const override { return kind_; }
   // The reference is `frame` (ModeEvents::OnReferenceTaken tells).
@@ -40,15 +50,17 @@ class FixateMode : public Mode {
 
  private:
   void Build();
-  // Logs a warning when the fixated slice's patch is one the search barely finds in the
-  // reference frame itself (PatchSelfConfidence), naming the slice that is found best.
-  void WarnOfAWeakPatch(std::uint64_t frame_index) const;
+  // When the fixated slice's patch is one the search barely finds in the reference frame
+  // itself (PatchSelfConfidence), moves the fixation to the nearest slice whose patch it finds
+  // surely (the agent's choice) or names that slice in a warning (the operator's).
+  void HoldByASurePatch(std::uint64_t frame_index);
   // SSP over the swing after a lost lock (LostLockSsp): on the frame its run ends, the fixation
   // moves to the recommended slice when that is not the one in use.
   void SeeLostLock(const CapturedFrame& frame, bool lock_lost);
 
   ModeContext& context_;
   const AgentMode kind_;
+  SliceChoice slice_choice_ = SliceChoice::kAgents;
   std::unique_ptr<FixationLoop> loop_;
   // The strategy the lost-lock SSP was built with (a settings change replaces the context's).
   std::shared_ptr<const SearchStrategy> ssp_strategy_;

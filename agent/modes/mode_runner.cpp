@@ -106,7 +106,11 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
     } else if (new_settings) {
       current_->OnSettings(false);  // bumpless: the controller keeps its state
     }
-    if (pending.mode) Enter(pending.mode->first, pending.mode->second, frame, current);
+    if (pending.mode) {
+      const FixateMode::SliceChoice choice =
+          pending.slice ? FixateMode::SliceChoice::kOperators : FixateMode::SliceChoice::kAgents;
+      Enter(pending.mode->first, pending.mode->second, choice, frame, current);
+    }
   } catch (const std::exception& e) {
     // A setting that cannot work with this camera (a patch larger than the frame) or a
     // strategy that cannot be built: hold still and say why rather than fly blind.
@@ -117,14 +121,15 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
   }
 }
 
-std::unique_ptr<Mode> ModeRunner::MakeMode(AgentMode mode, const SwingDeadline& deadline) {
+std::unique_ptr<Mode> ModeRunner::MakeMode(AgentMode mode, const SwingDeadline& deadline,
+                                           FixateMode::SliceChoice slice) {
   const SwingWindow window{
       .deadline = deadline, .start_index = 0, .frame_period_s = context_.options().frame_period_s};
   switch (mode) {
     case AgentMode::kIdle:
       return std::make_unique<IdleMode>(context_, ServoTargets{});
     case AgentMode::kFixate:
-      return std::make_unique<FixateMode>(context_);
+      return std::make_unique<FixateMode>(context_, slice);
     case AgentMode::kFollow:
       return std::make_unique<FollowMode>(context_);
     case AgentMode::kSsp:
@@ -141,9 +146,9 @@ std::unique_ptr<Mode> ModeRunner::MakeMode(AgentMode mode, const SwingDeadline& 
   throw std::runtime_error("unknown mode");
 }
 
-void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
-                       const ServoTargets& current) {
-  std::unique_ptr<Mode> next = MakeMode(mode, deadline);
+void ModeRunner::Enter(AgentMode mode, const SwingDeadline& deadline, FixateMode::SliceChoice slice,
+                       const CapturedFrame& frame, const ServoTargets& current) {
+  std::unique_ptr<Mode> next = MakeMode(mode, deadline, slice);
   current_.reset();  // what the previous mode held goes before the next one starts
   resuming_ = false;
   next->Enter(frame, current);

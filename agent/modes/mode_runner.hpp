@@ -8,6 +8,7 @@
 
 #include "agent/config/agent_config.hpp"
 #include "agent/modes/agent_mode.hpp"
+#include "agent/modes/fixate_mode.hpp"
 #include "agent/modes/frame_processor.hpp"
 #include "agent/modes/mode.hpp"
 #include "agent/modes/mode_context.hpp"
@@ -68,10 +69,12 @@ class ModeRunner : public FrameProcessor {
   };
 
   void ApplyPending(const CapturedFrame& frame, const ServoTargets& current);
-  // The operator's (or the start's) mode; throws when it cannot start on `frame`.
-  void Enter(AgentMode mode, const SwingDeadline& deadline, const CapturedFrame& frame,
-             const ServoTargets& current);
-  std::unique_ptr<Mode> MakeMode(AgentMode mode, const SwingDeadline& deadline);
+  // The operator's (or the start's) mode; throws when it cannot start on `frame`. `slice` says
+  // whether the operator picked the slice with this request (fixate keeps it then).
+  void Enter(AgentMode mode, const SwingDeadline& deadline, FixateMode::SliceChoice slice,
+             const CapturedFrame& frame, const ServoTargets& current);
+  std::unique_ptr<Mode> MakeMode(AgentMode mode, const SwingDeadline& deadline,
+                                 FixateMode::SliceChoice slice);
   // The mode in force ended by itself on `frame`, whose outcome it gave.
   FrameOutcome SwitchAfter(ModeEnd end, FrameOutcome outcome, const CapturedFrame& frame,
                            const ServoTargets& current, double dt_s);

@@ -287,8 +287,19 @@ class ClosedLoopRun {
       // the swing may land on a weak part of the scene there: the agent warns the operator
       // (FixateMode), who takes another slice; here SSP's next slice whose patch passes.
       fixation.slice = ConfidentSlice(platform_.Capture(), ranking, fixation, *strategy);
-    } else if (options_.start == ClosedLoopOptions::Start::kMoving) {
-      platform_.Step();  // the servos hold; the swing (and its blur) is under way
+    } else {
+      if (options_.start == ClosedLoopOptions::Start::kMoving) {
+        platform_.Step();  // the servos hold; the swing (and its blur) is under way
+      }
+      // As the agent's fixate: the agent's slice's patch, when the search barely finds it in
+      // the frame that becomes the reference, gives way to the nearest slice whose it finds
+      // surely (FixateMode::HoldByASurePatch).
+      if (!options_.keep_slice) {
+        fixation.slice =
+            NearestConfidentSlice(PatchSelfConfidences(platform_.Capture(), fixation, *strategy),
+                                  fixation.slice, fixation.lock_regain_confidence)
+                .value_or(fixation.slice);
+      }
     }
     // What the controller believes the servos show: built from the commands sent, never from
     // the servos' true output angles (those stay the simulation's), and resolved from each

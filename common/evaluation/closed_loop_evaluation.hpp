@@ -60,6 +60,11 @@ struct ClosedLoopOptions {
   enum class Start { kFirstFrame, kAfterSsp, kMoving };
   Start start = Start::kFirstFrame;
   int ssp_frames = 300;  // [frames] the free swing (the agent's default SSP deadline)
+  // From the first frame or moving: the fixated slice is the operator's (select_slice) and is
+  // kept though its patch is weak in the reference; otherwise it is the agent's, and a weak
+  // patch gives way to the nearest slice whose patch the search finds surely
+  // (NearestConfidentSlice), as the agent's fixate does.
+  bool keep_slice = false;
   // [frames] a lock lost this long runs SSP over the ssp_frames that follow and moves the
   // fixation to its slice on the same reference (LostLockSsp, as the agent's fixate); 0 = never.
   int ssp_after_lost_frames = 0;

@@ -30,4 +30,16 @@ std::optional<int> ConfidentSliceBesides(const cv::Mat& frame_bgr, const std::ve
                                          int lost, const FixationOptions& options,
                                          const SearchStrategy& strategy);
 
+// [0, 1] PatchSelfConfidence of every slice in `frame_bgr`: element i is slice i + 1's.
+std::vector<double> PatchSelfConfidences(const cv::Mat& frame_bgr, const FixationOptions& options,
+                                         const SearchStrategy& strategy);
+
+// The slice to hold a view by when the patch of `slice` [1 … confidences.size()] may be weak:
+// `slice` itself when its confidence (as PatchSelfConfidences) is `least` or more, else the
+// nearest slice whose is, the more confident of two equally near; none when no slice passes.
+// Nearest, because the servos turn and do not roll: under the camera's roll a patch far from
+// the frame's centre is held while the centre, the view, drifts by the roll times the distance.
+std::optional<int> NearestConfidentSlice(const std::vector<double>& confidences, int slice,
+                                         double least);
+
 }  // namespace kapfix

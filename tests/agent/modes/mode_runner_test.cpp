@@ -132,19 +132,49 @@ std::string LoggedDuring(const std::function<void()>& run) {
   return log.str();
 }
 
-TEST(ModeRunnerTest, FixatingAPatchTheSearchBarelyFindsInItsOwnFrameIsWarnedOf) {
-  // The band of the middle slice (the default), as far as the search reaches, painted flat:
-  // that patch matches itself equally well at every shift; the other slices are textured.
+// The first frame of Swing with the band of the middle slice (the default), as far as the
+// search reaches, painted flat: that patch matches itself equally well at every shift; the
+// other slices are textured.
+CapturedFrame FrameWithAFlatMiddle() {
   CapturedFrame frame = Swing(1)[0];
   const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
   const int top = std::max(0, middle.y - 24 - 4);
   const int bottom = std::min(kFrame.height, middle.br().y + 24 + 4);
   frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+  return frame;
+}
+
+TEST(ModeRunnerTest, AWeakPatchOnTheAgentsSliceGivesWayToTheNearestSurePatch) {
   RecordingModeEvents events;
+  FrameOutcome outcome;
   const std::string log = LoggedDuring([&] {
     ModeRunner runner(SmallConfig(), Options(AgentMode::kFixate), events);
-    Feed(runner, frame);
+    outcome = Feed(runner, FrameWithAFlatMiddle());
   });
+  const int middle = (kSlices + 1) / 2;
+  EXPECT_NE(outcome.slice, middle) << log;
+  EXPECT_EQ(outcome.mode, AgentMode::kFixate);
+  EXPECT_EQ(outcome.patch, SlicePatch(kFrame, kSlices, outcome.slice, kPatch));
+  EXPECT_NE(log.find("slice 3's patch is weak here"), std::string::npos) << log;
+  EXPECT_NE(log.find("the same view is held by slice " + std::to_string(outcome.slice)),
+            std::string::npos)
+      << log;
+  ASSERT_FALSE(events.modes.empty());
+  EXPECT_EQ(events.modes.back(), std::make_pair(AgentMode::kFixate, outcome.slice))
+      << "the operator sees the slice in use";
+}
+
+TEST(ModeRunnerTest, TheOperatorsPickedSliceIsKeptThoughItsPatchIsWeakAndTheNearestSureOneNamed) {
+  RecordingModeEvents events;
+  FrameOutcome outcome;
+  const std::string log = LoggedDuring([&] {
+    ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle), events);
+    Feed(runner, Swing(1)[0]);
+    runner.RequestSlice(3);
+    outcome = Feed(runner, FrameWithAFlatMiddle());
+  });
+  EXPECT_EQ(outcome.slice, 3) << log;
+  EXPECT_EQ(outcome.mode, AgentMode::kFixate);
   EXPECT_NE(log.find("slice 3's patch is weak here"), std::string::npos) << log;
   EXPECT_NE(log.find("select it (select_slice)"), std::string::npos) << log;
 }
@@ -242,7 +272,7 @@ TEST(ModeRunnerTest, FixateMeasuresEachFrameAgainstTheFirst) {
 }
 
 // A free swing whose middle slice's band (the default slice, as far as the search reaches) is
-// flat in every frame: a first-frame fixation there is lost at once and never re-acquired.
+// flat in every frame: a fixation there is lost at once and never re-acquired.
 std::vector<CapturedFrame> SwingWithAFlatMiddle(int frames) {
   std::vector<CapturedFrame> swing = Swing(frames);
   const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
@@ -254,18 +284,20 @@ std::vector<CapturedFrame> SwingWithAFlatMiddle(int frames) {
   return swing;
 }
 
-// Fixating the flat middle from the first frame, SSP after a lost lock 0.1 s (3 frames) and
-// SSP's deadline 20 frames: the outcomes of 60 frames.
+// The operator fixating the flat middle (select_slice, so that the agent keeps that slice) from
+// the second frame, SSP after a lost lock 0.1 s (3 frames) and SSP's deadline 20 frames: the
+// outcomes of the 59 frames fixated.
 std::vector<FrameOutcome> FixateTheFlatMiddle(double ssp_after_lost_s,
                                               RecordingModeEvents* events) {
   AgentConfig config = SmallConfig();
   config.search.ssp_after_lost_s = ssp_after_lost_s;
   config.search.swing_frames = 20;
-  ModeRunner runner(config, Options(AgentMode::kFixate), *events);
+  ModeRunner runner(config, Options(AgentMode::kIdle), *events);
+  const std::vector<CapturedFrame> swing = SwingWithAFlatMiddle(60);
+  Feed(runner, swing.front());
+  runner.RequestSlice((kSlices + 1) / 2);
   std::vector<FrameOutcome> outcomes;
-  for (const CapturedFrame& frame : SwingWithAFlatMiddle(60)) {
-    outcomes.push_back(Feed(runner, frame));
-  }
+  for (std::size_t i = 1; i < swing.size(); ++i) outcomes.push_back(Feed(runner, swing[i]));
   return outcomes;
 }
 

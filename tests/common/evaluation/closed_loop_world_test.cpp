@@ -236,12 +236,24 @@ TEST(ClosedLoopDropsTest, ADroppedFrameIsNeverASilentGrossFrame) {
 TEST(ClosedLoopAmbiguityTest, TheChessboardIsReportedNotSilentlyHeld) {
   // left01.jpg: a chessboard, whose neighbouring squares match nearly as well as the right
   // one. The loop may lose it, but must say so: nearly every frame whose true view error is
-  // gross carries lock_lost.
+  // gross carries lock_lost. The operator's middle slice, whose patch is all squares.
   ClosedLoopOptions options;
   options.frames = 200;
+  options.keep_slice = true;
   const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("left01.jpg"), options);
   EXPECT_GT(f.lock_lost_pct, 50.0);
   EXPECT_LT(f.silent_gross_pct, 3.0) << "gross " << f.gross_pct << " %";
+}
+
+TEST(ClosedLoopAmbiguityTest, TheAgentHoldsTheChessboardsViewByASlicesPatchFoundSurely) {
+  // The agent's slice: the middle patch, all squares, is ambiguous in the reference itself, so
+  // the view is held by the nearest slice whose patch is not, and held without a silent frame.
+  ClosedLoopOptions options;
+  options.frames = 200;
+  const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("left01.jpg"), options);
+  EXPECT_NE(f.slice, 5);
+  EXPECT_LT(f.rms_error_px, 5.0) << "slice " << f.slice;
+  EXPECT_LE(f.silent_gross_pct, 0.5) << "gross " << f.gross_pct << " %";
 }
 
 // building.jpg, rows of identical windows: before the lock needed confirming, 5.6 % of a
@@ -358,11 +370,12 @@ TEST(ClosedLoopStartTest, RefusesAFreeSwingOfFewerThanTwoFrames) {
 }
 
 // Blender_Suzanne1.jpg's centre is a smooth face the swing's blur wipes out: fixated there from
-// the first frame (realistic world, seed 3) the lock is lost within 5 frames and the wide search
-// never finds it again. SSP over the swing the held servos leave free names a slice whose patch
-// the swing does not lose, and the same reference is held by it.
-ClosedLoopFigures FlySuzanneFromTheFirstFrame(int ssp_after_lost_frames) {
+// the first frame (realistic world, seed 3), the operator's pick, the lock is lost within 5
+// frames and the wide search never finds it again. SSP over the swing the held servos leave
+// free names a slice whose patch the swing does not lose, and the same reference is held by it.
+ClosedLoopFigures FlySuzanneFromTheFirstFrame(int ssp_after_lost_frames, bool keep_slice = true) {
   ClosedLoopOptions options;
+  options.keep_slice = keep_slice;
   options.frames = 420;
   options.world = WorldOptions::Realistic();
   options.platform.kite.seed = 3;
@@ -403,6 +416,23 @@ TEST(ClosedLoopLostLockTest, RefusesANegativeWait) {
   std::string error;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("lost lock"), std::string::npos) << error;
+}
+
+// The same face, the agent's slice: the middle patch is weak in the reference (the search
+// finds it in its own frame at 0.06), so the view is held by the nearest slice's patch found
+// surely there, from the first frame on.
+TEST(ClosedLoopWeakPatchTest, AWeakMiddlePatchGivesWayToTheNearestSureSliceFromTheFirstFrame) {
+  const ClosedLoopFigures kept = FlySuzanneFromTheFirstFrame(0);
+  const ClosedLoopFigures moved = FlySuzanneFromTheFirstFrame(0, /*keep_slice=*/false);
+  EXPECT_EQ(kept.slice, 5);
+  EXPECT_GT(kept.rms_error_px, 20.0) << "the premise: the middle patch's lock never comes";
+  EXPECT_NE(moved.slice, 5);
+  EXPECT_LE(std::abs(moved.slice - 5), 2) << "the nearest sure slice, not any";
+  EXPECT_LT(moved.rms_error_px, 8.0) << "slice " << moved.slice;
+  const auto [rms_late, lost_late] = LastFrames(moved, 150);
+  EXPECT_LT(lost_late, 5.0);
+  EXPECT_LT(rms_late, 8.0);
+  EXPECT_LE(moved.silent_gross_pct, 0.5);
 }
 
 }  // namespace

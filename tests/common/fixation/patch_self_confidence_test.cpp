@@ -65,5 +65,41 @@ TEST(PatchSelfConfidenceTest, AnEmptyRankingIsRefused) {
                std::invalid_argument);
 }
 
+TEST(PatchSelfConfidenceTest, PatchSelfConfidencesHasEachSlicesInSliceOrder) {
+  const FixationOptions options;
+  const cv::Mat frame = PhotoWithAFlatTopSlice(options);
+  const std::vector<double> confidences = PatchSelfConfidences(frame, options, *Pyr());
+  ASSERT_EQ(confidences.size(), static_cast<std::size_t>(options.slice_count));
+  for (const int slice : {1, 5, options.slice_count}) {
+    EXPECT_DOUBLE_EQ(confidences[static_cast<std::size_t>(slice - 1)],
+                     PatchSelfConfidence(frame, slice, options, *Pyr()))
+        << slice;
+  }
+}
+
+TEST(PatchSelfConfidenceTest, NearestConfidentSliceKeepsASliceThatPasses) {
+  EXPECT_EQ(NearestConfidentSlice({0.9, 0.5, 0.4, 0.9, 0.9}, 3, 0.4), 3);
+}
+
+TEST(PatchSelfConfidenceTest, NearestConfidentSliceTakesTheNearestThatPassesNotTheMostConfident) {
+  //                               1    2    3    4    5    6    7
+  EXPECT_EQ(NearestConfidentSlice({0.9, 0.1, 0.1, 0.2, 0.1, 0.5, 0.1}, 4, 0.4), 6);
+  EXPECT_EQ(NearestConfidentSlice({0.9, 0.1, 0.1, 0.2, 0.1, 0.1, 0.1}, 4, 0.4), 1);
+}
+
+TEST(PatchSelfConfidenceTest, NearestConfidentSliceTakesTheMoreConfidentOfTwoEquallyNear) {
+  EXPECT_EQ(NearestConfidentSlice({0.1, 0.45, 0.1, 0.6, 0.1}, 3, 0.4), 4);
+  EXPECT_EQ(NearestConfidentSlice({0.1, 0.7, 0.1, 0.6, 0.1}, 3, 0.4), 2);
+}
+
+TEST(PatchSelfConfidenceTest, NearestConfidentSliceIsNoneWhenNoSlicePasses) {
+  EXPECT_EQ(NearestConfidentSlice({0.1, 0.39, 0.0}, 2, 0.4), std::nullopt);
+}
+
+TEST(PatchSelfConfidenceTest, NearestConfidentSliceRefusesASliceOutsideTheConfidences) {
+  EXPECT_THROW(NearestConfidentSlice({0.5, 0.5}, 3, 0.4), std::invalid_argument);
+  EXPECT_THROW(NearestConfidentSlice({0.5, 0.5}, 0, 0.4), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace kapfix
