@@ -61,28 +61,35 @@ void FixateMode::HoldByASurePatch(std::uint64_t frame_index) {
   const double confidence = confidences.at(static_cast<std::size_t>(slice - 1));
   const double least = options.lock_regain_confidence;
   if (confidence >= least) return;
-  const std::optional<int> nearest = NearestConfidentSlice(confidences, slice, least);
+  // SSP's recommendation gives way along SSP's ranking, as the benchmark's start after SSP
+  // does; any other slice to the nearest that passes.
+  const std::vector<int>& ranking = context_.slice_ranking();
+  // (A ranking of another slice count is of settings no longer in force.)
+  const bool ssps = ranking.size() == confidences.size() && ranking.front() == slice;
+  const std::optional<int> sure = ssps ? FirstConfidentSlice(confidences, ranking, least)
+                                       : NearestConfidentSlice(confidences, slice, least);
+  const char* const which = ssps ? "the next in SSP's ranking" : "the nearest";
   const std::string weak = fmt::format(
       "frame {}: slice {}'s patch is weak here: the search finds it in its own frame at "
       "confidence {:.2f}, and a lock is confirmed at {:.2f}",
       frame_index, slice, confidence, least);
-  if (!nearest) {
+  if (!sure) {
     spdlog::warn("{}, so the lock may never come; no slice's patch is found surely here", weak);
     return;
   }
-  const double found = confidences.at(static_cast<std::size_t>(*nearest - 1));
+  const double found = confidences.at(static_cast<std::size_t>(*sure - 1));
   if (slice_choice_ == SliceChoice::kOperators) {
     spdlog::warn(
-        "{}, so the lock may never come; slice {} is found at {:.2f}: select it (select_slice) "
-        "if the lock does not come",
-        weak, *nearest, found);
+        "{}, so the lock may never come; slice {} is {} found surely ({:.2f}): select it "
+        "(select_slice) if the lock does not come",
+        weak, *sure, which, found);
     return;
   }
   spdlog::warn(
-      "{}: the same view is held by slice {}'s patch instead, the nearest found surely ({:.2f}; "
+      "{}: the same view is held by slice {}'s patch instead, {} found surely ({:.2f}; "
       "select_slice {} overrides)",
-      weak, *nearest, found, slice);
-  context_.SetSlice(*nearest);
+      weak, *sure, which, found, slice);
+  context_.SetSlice(*sure);
   Build();
 }
 

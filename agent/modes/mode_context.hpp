@@ -4,6 +4,8 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "agent/config/agent_config.hpp"
 #include "agent/modes/agent_mode.hpp"
@@ -60,6 +62,9 @@ class ModeContext {
   void SetSlice(int slice) { slice_ = slice; }
   // [1..slices] `slice` clamped to the settings' slice count.
   int ClampSlice(int slice) const;
+  // SSP's last ranking, best first (control thread only); empty before any SSP has finished.
+  const std::vector<int>& slice_ranking() const { return slice_ranking_; }
+  void SetSliceRanking(std::vector<int> ranking) { slice_ranking_ = std::move(ranking); }
 
   const ModeRunnerOptions& options() const { return options_; }
   ModeEvents& events() const { return events_; }
@@ -78,6 +83,7 @@ class ModeContext {
   std::shared_ptr<const AgentConfig> settings_;
   std::shared_ptr<const SearchStrategy> strategy_;
   std::atomic<int> slice_{0};
+  std::vector<int> slice_ranking_;
 };
 
 }  // namespace kapfix::agent

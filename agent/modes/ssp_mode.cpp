@@ -29,6 +29,7 @@ FrameOutcome SspMode::Process(const CapturedFrame& frame, const ServoTargets& /*
       // The recommended slice becomes the one in use; the operator confirms it (or picks
       // another) and starts fixating.
       run_.reset();
+      context_.SetSliceRanking(selection.ranking);
       if (held_) {
         // The view fixated before SSP is held again until the operator confirms a slice
         // (select_slice): SSP alone never drops the lock.

@@ -85,4 +85,16 @@ std::optional<int> NearestConfidentSlice(const std::vector<double>& confidences,
   return std::nullopt;
 }
 
+std::optional<int> FirstConfidentSlice(const std::vector<double>& confidences,
+                                       const std::vector<int>& ranking, double least) {
+  for (const int slice : ranking) {
+    if (slice < 1 || slice > static_cast<int>(confidences.size())) {
+      throw std::invalid_argument("FirstConfidentSlice: slice " + std::to_string(slice) +
+                                  " is not in 1 … " + std::to_string(confidences.size()));
+    }
+    if (confidences[static_cast<std::size_t>(slice - 1)] >= least) return slice;
+  }
+  return std::nullopt;
+}
+
 }  // namespace kapfix

@@ -41,5 +41,10 @@ std::vector<double> PatchSelfConfidences(const cv::Mat& frame_bgr, const Fixatio
 // the frame's centre is held while the centre, the view, drifts by the roll times the distance.
 std::optional<int> NearestConfidentSlice(const std::vector<double>& confidences, int slice,
                                          double least);
+// The first slice of `ranking` (best first, e.g. SSP's) whose confidence (as
+// PatchSelfConfidences) is `least` or more; none when no ranked slice passes. Throws
+// std::invalid_argument for a ranked slice outside 1 … confidences.size().
+std::optional<int> FirstConfidentSlice(const std::vector<double>& confidences,
+                                       const std::vector<int>& ranking, double least);
 
 }  // namespace kapfix

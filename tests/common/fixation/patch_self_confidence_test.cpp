@@ -101,5 +101,13 @@ TEST(PatchSelfConfidenceTest, NearestConfidentSliceRefusesASliceOutsideTheConfid
   EXPECT_THROW(NearestConfidentSlice({0.5, 0.5}, 0, 0.4), std::invalid_argument);
 }
 
+TEST(PatchSelfConfidenceTest, FirstConfidentSliceFollowsTheRankingNotTheDistance) {
+  //                                  1    2    3    4    5
+  const std::vector<double> confidences{0.9, 0.1, 0.1, 0.5, 0.6};
+  EXPECT_EQ(FirstConfidentSlice(confidences, {3, 5, 4, 1}, 0.4), 5);
+  EXPECT_EQ(FirstConfidentSlice(confidences, {3, 2}, 0.4), std::nullopt);
+  EXPECT_THROW(FirstConfidentSlice(confidences, {3, 6}, 0.4), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace kapfix
