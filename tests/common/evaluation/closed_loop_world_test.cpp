@@ -247,7 +247,8 @@ TEST(ClosedLoopAmbiguityTest, TheChessboardIsReportedNotSilentlyHeld) {
 
 TEST(ClosedLoopAmbiguityTest, TheAgentHoldsTheChessboardsViewByASlicesPatchFoundSurely) {
   // The agent's slice: the middle patch, all squares, is ambiguous in the reference itself, so
-  // the view is held by the nearest slice whose patch is not, and held without a silent frame.
+  // the view is held by the nearest slice whose patch is not, without a silent frame. (Over
+  // 500 frames the benchmark's seeds lose that patch too, and say so.)
   ClosedLoopOptions options;
   options.frames = 200;
   const ClosedLoopFigures f = EvaluateClosedLoop(testing::LoadOpenCvPhoto("left01.jpg"), options);
