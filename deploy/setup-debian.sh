@@ -43,6 +43,8 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   # bench/photo-shutter-pair.sh reads the flights' summary.json
   jq
+  # a peer from the .proto files alone: tools/python_client and tools/session in Python
+  python3-zmq python3-protobuf
 )
 
 if [ "${1:-}" = "--runtime" ]; then packages=("${runtime_packages[@]}"); fi
