@@ -5,7 +5,11 @@ kapfix-agent in simulation over loopback TCP. It reads the agent's state, switch
 and reads its telemetry; a command of another protocol version, a replayed sequence and an
 out-of-range gain are refused with the error code and a reason naming the problem.
 
-Usage: python_client_test.py PROTOC PROTO_DIR KAPFIX_AGENT CLIENT_PY
+Then an agent given CurveZMQ keys (kapfix-keygen's files): the client with an authorised key
+pair is answered, one with a key the agent does not list hears "auth" refused at the handshake,
+and a plain client gets no handshake through.
+
+Usage: python_client_test.py PROTOC PROTO_DIR KAPFIX_AGENT CLIENT_PY KAPFIX_KEYGEN
 Exits 77 (ctest: skipped) with a message when python3-zmq or python3-protobuf is missing.
 Every wait is on the agent's answer, bounded only to end a hang.
 """
@@ -41,7 +45,7 @@ def free_port_pair():
 
 
 def main():
-    protoc, proto_dir, agent_binary, client_path = sys.argv[1:5]
+    protoc, proto_dir, agent_binary, client_path, keygen = sys.argv[1:6]
     try:
         import zmq
         import google.protobuf  # noqa: F401  (only whether it is there)
@@ -64,17 +68,34 @@ def main():
         pb = kapfix_client.load_modules(folder)
         command_pb2, types_pb2 = pb["command"], pb["types"]
 
-        port = free_port_pair()
-        config = os.path.join(folder, "agent.json")
-        with open(config, "w") as f:
-            json.dump({"link": {"command": "tcp://127.0.0.1:%d" % port,
-                                "stream": "tcp://127.0.0.1:%d" % (port + 1)}}, f)
-        log_path = os.path.join(folder, "agent.log")
-        with open(log_path, "w") as log:
-            agent = subprocess.Popen(
-                [agent_binary, "--config", config, "--sim", "--mode", "idle", "--no-resume",
-                 "--state-dir", os.path.join(folder, "state")],
-                stdout=log, stderr=subprocess.STDOUT)
+        def start_agent(name, link):
+            """kapfix-agent in simulation, idle, with `link` (the config's "link" object) on
+            two free loopback ports; (process, command port, log path)."""
+            port = free_port_pair()
+            link = dict(link, command="tcp://127.0.0.1:%d" % port,
+                        stream="tcp://127.0.0.1:%d" % (port + 1))
+            config = os.path.join(folder, name + ".json")
+            with open(config, "w") as f:
+                json.dump({"link": link}, f)
+            log_path = os.path.join(folder, name + ".log")
+            with open(log_path, "w") as log:
+                process = subprocess.Popen(
+                    [agent_binary, "--config", config, "--sim", "--mode", "idle", "--no-resume",
+                     "--state-dir", os.path.join(folder, name + "_state")],
+                    stdout=log, stderr=subprocess.STDOUT)
+            return process, port, log_path
+
+        def stop_agent(process):
+            process.terminate()
+            try:
+                code = process.wait(timeout=ANSWER_S)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                code = process.wait()
+                failures.append("the agent did not stop on SIGTERM")
+            check(code == 0, "the agent exited with %s on SIGTERM" % code)
+
+        agent, port, log_path = start_agent("plain", {})
         client = kapfix_client.Client(zmq, pb, "127.0.0.1", port, port + 1)
         try:
             state = client.state(timeout_s=ANSWER_S)
@@ -128,20 +149,46 @@ def main():
             failures.append(str(e))
         finally:
             client.close()
-            agent.terminate()
-            try:
-                code = agent.wait(timeout=ANSWER_S)
-            except subprocess.TimeoutExpired:
-                agent.kill()
-                code = agent.wait()
-                failures.append("the agent did not stop on SIGTERM")
-        check(code == 0, "the agent exited with %s on SIGTERM" % code)
+            stop_agent(agent)
+
+        # CurveZMQ: kapfix-keygen's files, the agent listing the laptop's key only.
+        for name in ("agent", "laptop", "stranger"):
+            subprocess.run([keygen, name], cwd=folder, check=True, stdout=subprocess.DEVNULL)
+        key = lambda name: os.path.join(folder, name)  # noqa: E731
+        with open(key("authorized_keys"), "w") as f, open(key("laptop.pub")) as pub:
+            f.write(pub.read())
+        secure, secure_port, secure_log = start_agent(
+            "secure", {"curve_secret_key_file": key("agent.key"),
+                       "curve_authorized_keys_file": key("authorized_keys")})
+        agent_key = kapfix_client.read_public_key(key("agent.pub"))
+        try:
+            for name, expected in (("laptop", "ok"), ("stranger", "auth"), (None, "failed")):
+                curve = None if name is None else (
+                    (agent_key,) + kapfix_client.read_key_pair(key(name + ".key")))
+                peer = kapfix_client.Client(zmq, pb, "127.0.0.1", secure_port, secure_port + 1,
+                                            curve)
+                try:
+                    shake = peer.handshake(timeout_s=ANSWER_S)
+                    check(shake == expected, "%s's handshake: %s, not %s" % (name, shake, expected))
+                    if expected == "ok":
+                        answer = peer.state(timeout_s=ANSWER_S)
+                        check(answer.ok, "%s's request_state refused: %s" % (name, answer.reason))
+                finally:
+                    peer.close()
+        except kapfix_client.NoAnswer as e:
+            failures.append("CurveZMQ: " + str(e))
+        finally:
+            stop_agent(secure)
         if failures:
-            with open(log_path) as log:
-                tail = log.read()[-3000:]
-            print("FAILED:\n  " + "\n  ".join(failures) + "\nagent log (end):\n" + tail)
+            tails = ""
+            for path in (log_path, secure_log):
+                with open(path) as log:
+                    tails += "\n%s (end):\n%s" % (os.path.basename(path), log.read()[-2000:])
+            print("FAILED:\n  " + "\n  ".join(failures) + tails)
             return 1
-    print("ok: state, fixate, %d telemetry messages, three refusals with reasons" % len(telemetry))
+    print("ok: state, fixate, %d telemetry messages, three refusals with reasons; CurveZMQ: the "
+          "listed key answered, an unlisted one refused at the handshake, a plain peer's "
+          "handshake failed" % len(telemetry))
     return 0
 
 

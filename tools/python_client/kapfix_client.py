@@ -14,8 +14,11 @@ The wire, in short:
   per sender from 1, and the send time [µs since the Unix epoch], which the agent checks for
   replays.
 
+- An agent given keys (README, "Securing the link") speaks CurveZMQ only: the client's sockets
+  carry the agent's public key and the station's key pair (kapfix-keygen's files, Z85 text).
+
 Usage: kapfix_client.py --python-out DIR [--agent HOST] [--command-port P] [--stream-port P]
-                        state | mode MODE | watch N
+                        [--key STATION.key --agent-key AGENT.pub] state | mode MODE | watch N
   DIR holds the modules protoc made from proto/ (protoc -I proto --python_out DIR
   proto/kapfix/v1/*.proto). MODE: idle, fixate, ssp, ... (kapfix.v1.Mode without MODE_).
 Exit codes: 0 ok, 1 the agent refused (its reason printed), 3 no answer.
@@ -32,25 +35,90 @@ class NoAnswer(Exception):
     """The agent did not answer within the timeout."""
 
 
-class Client:
-    """One station: a DEALER for commands, a SUB for streams. Not thread-safe."""
+class KeyFileError(Exception):
+    """A key file that is missing or not kapfix-keygen's format (names the file)."""
 
-    def __init__(self, zmq, pb, host="127.0.0.1", command_port=5555, stream_port=5556):
+
+def read_public_key(path):
+    """The Z85 public key of a kapfix-keygen .pub file ("KEY NAME")."""
+    try:
+        with open(path) as f:
+            words = f.read().split()
+    except OSError as e:
+        raise KeyFileError("%s: %s" % (path, e.strerror))
+    if not words or len(words[0]) != 40:
+        raise KeyFileError("%s: not a kapfix-keygen .pub file (a 40-character Z85 key first)" % path)
+    return words[0].encode()
+
+
+def read_key_pair(path):
+    """(public, secret) Z85 keys of a kapfix-keygen .key file ("public-key = …" lines)."""
+    keys = {}
+    try:
+        with open(path) as f:
+            for line in f:
+                name, sep, value = line.partition("=")
+                if sep and not line.lstrip().startswith("#"):
+                    keys[name.strip()] = value.strip().encode()
+    except OSError as e:
+        raise KeyFileError("%s: %s" % (path, e.strerror))
+    if len(keys.get("public-key", b"")) != 40 or len(keys.get("secret-key", b"")) != 40:
+        raise KeyFileError("%s: not a kapfix-keygen .key file (public-key and secret-key lines)"
+                           % path)
+    return keys["public-key"], keys["secret-key"]
+
+
+class Client:
+    """One station: a DEALER for commands, a SUB for streams. Not thread-safe.
+
+    curve: None for plain TCP, or (agent public key, station public key, station secret key),
+    Z85 bytes, for an agent that speaks CurveZMQ."""
+
+    def __init__(self, zmq, pb, host="127.0.0.1", command_port=5555, stream_port=5556,
+                 curve=None):
         self._zmq = zmq
         self._pb = pb
         self._context = zmq.Context()
         self._dealer = self._context.socket(zmq.DEALER)
-        self._dealer.setsockopt(zmq.LINGER, 0)
+        self._sub = self._context.socket(zmq.SUB)
+        for socket in (self._dealer, self._sub):
+            socket.setsockopt(zmq.LINGER, 0)
+            if curve is not None:
+                socket.setsockopt(zmq.CURVE_SERVERKEY, curve[0])
+                socket.setsockopt(zmq.CURVE_PUBLICKEY, curve[1])
+                socket.setsockopt(zmq.CURVE_SECRETKEY, curve[2])
         # No queueing before the agent is there: a command stamped before the agent started is
         # refused as a replay (ERROR_CODE_STALE_SEQUENCE), so it is stamped once it can go.
         self._dealer.setsockopt(zmq.IMMEDIATE, 1)
+        # Watched before connecting, so that a refused key is heard of, not only waited out.
+        self._events = self._dealer.get_monitor_socket(
+            zmq.EVENT_HANDSHAKE_SUCCEEDED | zmq.EVENT_HANDSHAKE_FAILED_AUTH |
+            zmq.EVENT_HANDSHAKE_FAILED_PROTOCOL | zmq.EVENT_HANDSHAKE_FAILED_NO_DETAIL |
+            zmq.EVENT_DISCONNECTED)
         self._dealer.connect("tcp://%s:%d" % (host, command_port))
-        self._sub = self._context.socket(zmq.SUB)
-        self._sub.setsockopt(zmq.LINGER, 0)
         self._sub.connect("tcp://%s:%d" % (host, stream_port))
         self._sequence = 0
 
+    def handshake(self, timeout_s=10.0):
+        """The command socket's first handshake: "ok", or why it failed ("auth": the agent
+        refused this station's key; "failed": no common mechanism, e.g. plain TCP to an agent
+        with keys, which drops the connection). Raises NoAnswer when none ends in time."""
+        from zmq.utils.monitor import recv_monitor_message
+        deadline = time.monotonic() + timeout_s
+        while True:
+            left_ms = int((deadline - time.monotonic()) * 1000)
+            if left_ms <= 0 or not self._events.poll(left_ms):
+                raise NoAnswer("no handshake with the agent within %.0f s" % timeout_s)
+            event = recv_monitor_message(self._events)["event"]
+            if event == self._zmq.EVENT_HANDSHAKE_SUCCEEDED:
+                return "ok"
+            if event == self._zmq.EVENT_HANDSHAKE_FAILED_AUTH:
+                return "auth"
+            return "failed"
+
     def close(self):
+        self._dealer.disable_monitor()
+        self._events.close()
         self._dealer.close()
         self._sub.close()
         self._context.term()
@@ -138,6 +206,8 @@ def main(argv):
     parser.add_argument("--agent", default="127.0.0.1")
     parser.add_argument("--command-port", type=int, default=5555)
     parser.add_argument("--stream-port", type=int, default=5556)
+    parser.add_argument("--key", help="this station's kapfix-keygen .key file (CurveZMQ)")
+    parser.add_argument("--agent-key", help="the agent's kapfix-keygen .pub file (CurveZMQ)")
     sub = parser.add_subparsers(dest="what", required=True)
     sub.add_parser("state", help="the agent's state")
     mode = sub.add_parser("mode", help="switch mode")
@@ -150,8 +220,18 @@ def main(argv):
     except ImportError:
         print("kapfix_client.py needs python3-zmq", file=sys.stderr)
         return 2
+    if (args.key is None) != (args.agent_key is None):
+        print("--key and --agent-key go together (CurveZMQ needs both)", file=sys.stderr)
+        return 2
+    curve = None
+    if args.key is not None:
+        try:
+            curve = (read_public_key(args.agent_key),) + read_key_pair(args.key)
+        except KeyFileError as e:
+            print(str(e), file=sys.stderr)
+            return 2
     client = Client(zmq, load_modules(args.python_out), args.agent, args.command_port,
-                    args.stream_port)
+                    args.stream_port, curve)
     try:
         if args.what == "watch":
             for t in client.watch(b"telemetry", args.count):
