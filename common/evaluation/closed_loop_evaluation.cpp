@@ -284,8 +284,8 @@ class ClosedLoopRun {
           FreeSwingRanking(platform_, fixation, *strategy, options_.ssp_frames);
       platform_.Step();
       // The patch is cut from the frame that becomes the reference, and a slice SSP liked over
-      // the swing may land on a weak part of the scene there: the agent warns the operator
-      // (FixateMode), who takes another slice; here SSP's next slice whose patch passes.
+      // the swing may land on a weak part of the scene there: the agent's fixate then takes
+      // SSP's next slice whose patch passes (FixateMode::HoldByASurePatch), as here.
       fixation.slice = ConfidentSlice(platform_.Capture(), ranking, fixation, *strategy);
     } else {
       if (options_.start == ClosedLoopOptions::Start::kMoving) {
