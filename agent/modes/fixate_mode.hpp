@@ -19,11 +19,12 @@ namespace kapfix::agent {
 // free swing that follows and moves the fixation to its slice, on the same reference frame.
 class FixateMode : public Mode {
  public:
-  // Whose the slice in use is as fixate begins. The operator's (select_slice) is kept, with a
-  // warning when its patch is weak in the reference frame. The agent's (the middle slice,
-  // SSP's recommendation, the slice of an earlier fixation) gives way to the nearest slice
-  // whose patch the search finds surely there: the view held is the reference frame's either
-  // way, and a patch on a plain wall or a smooth face would lose it from the first frame.
+  // Whose the slice in use is as fixate begins. The operator's (select_slice of a slice other
+  // than SSP's recommendation) is kept, with a warning when its patch is weak in the reference
+  // frame. The agent's (the middle slice, SSP's recommendation, also when the operator confirms
+  // it, the slice of an earlier fixation) gives way to another slice whose patch the search
+  // finds surely there: the view held is the reference frame's either way, and a patch on a
+  // plain wall or a smooth face would lose it from the first frame.
   enum class SliceChoice { kAgents, kOperators };
 
   explicit FixateMode(ModeContext& context, SliceChoice choice = SliceChoice::kAgents)

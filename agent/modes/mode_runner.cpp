@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "agent/modes/calibrate_mode.hpp"
 #include "agent/modes/fixate_mode.hpp"
@@ -107,8 +108,13 @@ void ModeRunner::ApplyPending(const CapturedFrame& frame, const ServoTargets& cu
       current_->OnSettings(false);  // bumpless: the controller keeps its state
     }
     if (pending.mode) {
-      const FixateMode::SliceChoice choice =
-          pending.slice ? FixateMode::SliceChoice::kOperators : FixateMode::SliceChoice::kAgents;
+      // Confirming SSP's recommendation (the station's Confirm) accepts the agent's choice,
+      // so a weak patch there gives way along SSP's ranking; any other pick is the operator's.
+      const std::vector<int>& ranking = context_.slice_ranking();
+      const bool confirms_ssp = !ranking.empty() && context_.slice() == ranking.front();
+      const FixateMode::SliceChoice choice = pending.slice && !confirms_ssp
+                                                 ? FixateMode::SliceChoice::kOperators
+                                                 : FixateMode::SliceChoice::kAgents;
       Enter(pending.mode->first, pending.mode->second, choice, frame, current);
     }
   } catch (const std::exception& e) {

@@ -179,33 +179,54 @@ TEST(ModeRunnerTest, TheOperatorsPickedSliceIsKeptThoughItsPatchIsWeakAndTheNear
   EXPECT_NE(log.find("select it (select_slice)"), std::string::npos) << log;
 }
 
-TEST(ModeRunnerTest, AfterSspAWeakPatchOfItsRecommendationGivesWayAlongSspsRanking) {
-  RecordingModeEvents events;
+// After SSP, the frame fixated has SSP's slice's band painted flat; the operator fixates
+// (`pick`: by confirming the recommendation with select_slice, else by a plain fixate). The
+// outcome of that frame, the recommended slice and the log.
+struct FixatedAfterSsp {
   FrameOutcome outcome;
   int recommended = 0;
-  std::vector<int> ranks;  // [slice − 1] SSP's rank, 1 = best
-  const std::string log = LoggedDuring([&] {
+  std::string log;
+};
+
+FixatedAfterSsp FixateAfterSspOnAFlatRecommendation(bool confirm) {
+  RecordingModeEvents events;
+  FixatedAfterSsp result;
+  result.log = LoggedDuring([&] {
     ModeRunner runner(SmallConfig(), Options(AgentMode::kIdle), events);
     runner.RequestMode(AgentMode::kSsp, SwingDeadline{10, 100.0});
     for (const CapturedFrame& frame : Swing(10)) Feed(runner, frame);
     ASSERT_EQ(events.finished_slice_reports(), 1);
-    const kapfix::v1::SliceReport& report = events.slice_reports.back();
-    recommended = static_cast<int>(report.recommended_slice());
-    for (const auto& slice : report.slices()) ranks.push_back(static_cast<int>(slice.rank()));
-    // The frame fixated has SSP's slice's band painted flat.
+    result.recommended = static_cast<int>(events.slice_reports.back().recommended_slice());
     CapturedFrame frame = Swing(1)[0];
-    const cv::Rect patch = SlicePatch(kFrame, kSlices, recommended, kPatch);
+    const cv::Rect patch = SlicePatch(kFrame, kSlices, result.recommended, kPatch);
     const int top = std::max(0, patch.y - 24 - 4);
     const int bottom = std::min(kFrame.height, patch.br().y + 24 + 4);
     frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
     frame.index = 20;
-    runner.RequestMode(AgentMode::kFixate);
-    outcome = Feed(runner, frame);
+    if (confirm) {
+      runner.RequestSlice(result.recommended);
+    } else {
+      runner.RequestMode(AgentMode::kFixate);
+    }
+    result.outcome = Feed(runner, frame);
   });
-  ASSERT_EQ(ranks.size(), static_cast<std::size_t>(kSlices));
-  EXPECT_NE(outcome.slice, recommended) << log;
-  EXPECT_EQ(outcome.mode, AgentMode::kFixate);
-  EXPECT_NE(log.find("the next in SSP's ranking found surely"), std::string::npos) << log;
+  return result;
+}
+
+TEST(ModeRunnerTest, ConfirmingSspsRecommendationLetsAWeakPatchGiveWayAlongSspsRanking) {
+  const FixatedAfterSsp confirmed = FixateAfterSspOnAFlatRecommendation(/*confirm=*/true);
+  EXPECT_EQ(confirmed.outcome.mode, AgentMode::kFixate);
+  EXPECT_NE(confirmed.outcome.slice, confirmed.recommended) << confirmed.log;
+  EXPECT_NE(confirmed.log.find("the next in SSP's ranking found surely"), std::string::npos)
+      << confirmed.log;
+}
+
+TEST(ModeRunnerTest, AfterSspAWeakPatchOfItsRecommendationGivesWayAlongSspsRanking) {
+  const FixatedAfterSsp fixated = FixateAfterSspOnAFlatRecommendation(/*confirm=*/false);
+  EXPECT_EQ(fixated.outcome.mode, AgentMode::kFixate);
+  EXPECT_NE(fixated.outcome.slice, fixated.recommended) << fixated.log;
+  EXPECT_NE(fixated.log.find("the next in SSP's ranking found surely"), std::string::npos)
+      << fixated.log;
 }
 
 // What the agent logs when the operator fixates on frame 8 of a running camera whose frame
