@@ -55,12 +55,13 @@ void FixateMode::HoldByASurePatch(std::uint64_t frame_index) {
   // SSP judged the slice over the free swing; the patch is whatever part of the scene is under
   // it now. One the search barely finds in its own frame will not confirm a lock in flight.
   const FixationOptions& options = loop_->options();
-  const std::vector<double> confidences =
-      PatchSelfConfidences(reference_frame_, options, *context_.strategy());
+  const SearchStrategy& strategy = *context_.strategy();
   const int slice = options.slice;
-  const double confidence = confidences.at(static_cast<std::size_t>(slice - 1));
   const double least = options.lock_regain_confidence;
-  if (confidence >= least) return;
+  // One search when the patch passes, as it mostly does; every slice's only when it does not.
+  if (PatchSelfConfidence(reference_frame_, slice, options, strategy) >= least) return;
+  const std::vector<double> confidences = PatchSelfConfidences(reference_frame_, options, strategy);
+  const double confidence = confidences.at(static_cast<std::size_t>(slice - 1));
   // SSP's recommendation gives way along SSP's ranking, as the benchmark's start after SSP
   // does; any other slice to the nearest that passes.
   const std::vector<int>& ranking = context_.slice_ranking();

@@ -295,10 +295,14 @@ class ClosedLoopRun {
       // the frame that becomes the reference, gives way to the nearest slice whose it finds
       // surely (FixateMode::HoldByASurePatch).
       if (!options_.keep_slice) {
-        fixation.slice =
-            NearestConfidentSlice(PatchSelfConfidences(platform_.Capture(), fixation, *strategy),
-                                  fixation.slice, fixation.lock_regain_confidence)
-                .value_or(fixation.slice);
+        const cv::Mat reference = platform_.Capture();
+        const double least = fixation.lock_regain_confidence;
+        if (PatchSelfConfidence(reference, fixation.slice, fixation, *strategy) < least) {
+          fixation.slice =
+              NearestConfidentSlice(PatchSelfConfidences(reference, fixation, *strategy),
+                                    fixation.slice, least)
+                  .value_or(fixation.slice);
+        }
       }
     }
     // What the controller believes the servos show: built from the commands sent, never from

@@ -154,7 +154,9 @@ def main():
         # CurveZMQ: kapfix-keygen's files, the agent listing the laptop's key only.
         for name in ("agent", "laptop", "stranger"):
             subprocess.run([keygen, name], cwd=folder, check=True, stdout=subprocess.DEVNULL)
-        key = lambda name: os.path.join(folder, name)  # noqa: E731
+        def key(name):
+            return os.path.join(folder, name)
+
         with open(key("authorized_keys"), "w") as f, open(key("laptop.pub")) as pub:
             f.write(pub.read())
         secure, secure_port, secure_log = start_agent(

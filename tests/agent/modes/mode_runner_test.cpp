@@ -132,15 +132,20 @@ std::string LoggedDuring(const std::function<void()>& run) {
   return log.str();
 }
 
-// The first frame of Swing with the band of the middle slice (the default), as far as the
-// search reaches, painted flat: that patch matches itself equally well at every shift; the
-// other slices are textured.
+// Paints the band of `slice`'s patch in `image`, as far as the search reaches, one flat grey:
+// that patch then matches itself equally well at every shift.
+void PaintSliceBandFlat(cv::Mat& image, int slice) {
+  const cv::Rect patch = SlicePatch(kFrame, kSlices, slice, kPatch);
+  const int top = std::max(0, patch.y - 24 - 4);
+  const int bottom = std::min(kFrame.height, patch.br().y + 24 + 4);
+  image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+}
+
+// The first frame of Swing with the middle slice's band (the default slice) flat; the other
+// slices are textured.
 CapturedFrame FrameWithAFlatMiddle() {
   CapturedFrame frame = Swing(1)[0];
-  const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
-  const int top = std::max(0, middle.y - 24 - 4);
-  const int bottom = std::min(kFrame.height, middle.br().y + 24 + 4);
-  frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+  PaintSliceBandFlat(frame.image, (kSlices + 1) / 2);
   return frame;
 }
 
@@ -198,10 +203,7 @@ FixatedAfterSsp FixateAfterSspOnAFlatRecommendation(bool confirm) {
     ASSERT_EQ(events.finished_slice_reports(), 1);
     result.recommended = static_cast<int>(events.slice_reports.back().recommended_slice());
     CapturedFrame frame = Swing(1)[0];
-    const cv::Rect patch = SlicePatch(kFrame, kSlices, result.recommended, kPatch);
-    const int top = std::max(0, patch.y - 24 - 4);
-    const int bottom = std::min(kFrame.height, patch.br().y + 24 + 4);
-    frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
+    PaintSliceBandFlat(frame.image, result.recommended);
     frame.index = 20;
     if (confirm) {
       runner.RequestSlice(result.recommended);
@@ -213,20 +215,20 @@ FixatedAfterSsp FixateAfterSspOnAFlatRecommendation(bool confirm) {
   return result;
 }
 
-TEST(ModeRunnerTest, ConfirmingSspsRecommendationLetsAWeakPatchGiveWayAlongSspsRanking) {
-  const FixatedAfterSsp confirmed = FixateAfterSspOnAFlatRecommendation(/*confirm=*/true);
-  EXPECT_EQ(confirmed.outcome.mode, AgentMode::kFixate);
-  EXPECT_NE(confirmed.outcome.slice, confirmed.recommended) << confirmed.log;
-  EXPECT_NE(confirmed.log.find("the next in SSP's ranking found surely"), std::string::npos)
-      << confirmed.log;
-}
-
-TEST(ModeRunnerTest, AfterSspAWeakPatchOfItsRecommendationGivesWayAlongSspsRanking) {
-  const FixatedAfterSsp fixated = FixateAfterSspOnAFlatRecommendation(/*confirm=*/false);
+// The fixation moved off SSP's flat recommendation along SSP's ranking, and said so.
+void ExpectMovedAlongSspsRanking(const FixatedAfterSsp& fixated) {
   EXPECT_EQ(fixated.outcome.mode, AgentMode::kFixate);
   EXPECT_NE(fixated.outcome.slice, fixated.recommended) << fixated.log;
   EXPECT_NE(fixated.log.find("the next in SSP's ranking found surely"), std::string::npos)
       << fixated.log;
+}
+
+TEST(ModeRunnerTest, ConfirmingSspsRecommendationLetsAWeakPatchGiveWayAlongSspsRanking) {
+  ExpectMovedAlongSspsRanking(FixateAfterSspOnAFlatRecommendation(/*confirm=*/true));
+}
+
+TEST(ModeRunnerTest, AfterSspAWeakPatchOfItsRecommendationGivesWayAlongSspsRanking) {
+  ExpectMovedAlongSspsRanking(FixateAfterSspOnAFlatRecommendation(/*confirm=*/false));
 }
 
 // What the agent logs when the operator fixates on frame 8 of a running camera whose frame
@@ -325,12 +327,7 @@ TEST(ModeRunnerTest, FixateMeasuresEachFrameAgainstTheFirst) {
 // flat in every frame: a fixation there is lost at once and never re-acquired.
 std::vector<CapturedFrame> SwingWithAFlatMiddle(int frames) {
   std::vector<CapturedFrame> swing = Swing(frames);
-  const cv::Rect middle = SlicePatch(kFrame, kSlices, (kSlices + 1) / 2, kPatch);
-  const int top = std::max(0, middle.y - 24 - 4);
-  const int bottom = std::min(kFrame.height, middle.br().y + 24 + 4);
-  for (CapturedFrame& frame : swing) {
-    frame.image(cv::Rect(0, top, kFrame.width, bottom - top)).setTo(cv::Scalar(90, 90, 90));
-  }
+  for (CapturedFrame& frame : swing) PaintSliceBandFlat(frame.image, (kSlices + 1) / 2);
   return swing;
 }
 
